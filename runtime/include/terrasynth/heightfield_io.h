@@ -1,0 +1,93 @@
+// terrasynth/heightfield_io.h: reading exemplar DEMs and writing heightfields.
+//
+// Formats (docs/formats.md has the details):
+//  - 16-bit grayscale PNG + JSON sidecar (same stem, .json): the shared exemplar format.
+//    height_m = height_min_m + value/65535 * (height_max_m - height_min_m); row 0 is north.
+//  - plain 16-bit grayscale PNG without sidecar: the caller supplies spacing and vertical scale.
+//  - raw little-endian float32 (.f32 or .raw) + JSON sidecar with width, height, meters_per_pixel.
+//  - GeoTIFF (.tif/.tiff) when built with GDAL; OpenEXR (.exr, channel Y or R) when built with OpenEXR.
+// Every reader validates the data (size, finite heights, spacing) and names the file in its error.
+// Every writer writes to a temporary file in the same folder and renames it into place, so an
+// interrupted write never destroys an existing file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "terrasynth/heightfield.h"
+#include "terrasynth/status.h"
+
+namespace terrasynth {
+
+// Descriptive metadata carried alongside an exemplar (from the sidecar, when there is one).
+struct ExemplarInfo {
+    std::string name;            // file stem, e.g. "orom_alaska"
+    std::string path;            // the file that was read
+    std::string terrain_class;   // coarse type label; "" when unknown
+    std::string source;          // provenance, copied verbatim
+    std::string license;
+};
+
+struct Exemplar {
+    ExemplarInfo info;
+    Heightfield field;           // heights in metres at the file's own spacing
+    // Optional painted terrain type per pixel (width*height, 0..254), empty when not painted.
+    // See docs/formats.md: a sidecar key "type_mask" naming an 8-bit PNG.
+    std::vector<uint8_t> type_mask;
+    std::vector<std::string> type_mask_names;  // names of the mask's values, index = value
+};
+
+// How to read a plain 16-bit PNG that has no sidecar.
+struct PlainPngScale {
+    double meters_per_pixel = 0.0;   // > 0 required
+    double height_offset_m = 0.0;    // height of value 0
+    double meters_per_unit = 1.0;    // height step of one 16-bit unit
+};
+
+// Reads an exemplar in any supported format. A PNG without a sidecar needs `plain` (spacing > 0),
+// otherwise an error explains that a sidecar or a vertical scale is required.
+Result<Exemplar> readExemplar(const std::string& path, const PlainPngScale* plain = nullptr);
+
+// Lists the exemplar files of a directory (PNG with sidecar, .f32/.raw with sidecar, .tif, .exr),
+// sorted by name so database builds are deterministic.
+Result<std::vector<std::string>> listExemplarFiles(const std::string& directory);
+
+// Writers. Heights in metres.
+// 16-bit PNG quantised over the field's range, with a sidecar in the exemplar format (so the output
+// can be read back as an exemplar). `info` may be null.
+Status writeHeightfieldPng16(const std::string& path, const Heightfield& field,
+                             const ExemplarInfo* info = nullptr);
+// Raw float32 little-endian + sidecar.
+Status writeHeightfieldF32(const std::string& path, const Heightfield& field);
+// OpenEXR single channel "Y" float; an error when built without OpenEXR.
+Status writeHeightfieldExr(const std::string& path, const Heightfield& field);
+// Picks the writer from the extension (.png, .f32/.raw, .exr); an error names unknown extensions.
+Status writeHeightfield(const std::string& path, const Heightfield& field);
+bool openExrAvailable();
+bool gdalAvailable();
+
+// 8-bit RGB hillshade (sun azimuth 315 deg, altitude 45 deg) with a soft hypsometric tint, for
+// looking at results. Slopes use the field's true spacing.
+Status writeHillshadePng(const std::string& path, const Heightfield& field);
+
+// Low-level image writers used by other stages (sources maps, masks). Row-major samples.
+Status writePng16(const std::string& path, int width, int height, int channels,
+                  const std::vector<uint16_t>& samples);
+Status writePng8(const std::string& path, int width, int height, int channels,
+                 const std::vector<uint8_t>& samples);
+struct Image16 {
+    int width = 0, height = 0, channels = 0;
+    std::vector<uint16_t> samples;
+};
+struct Image8 {
+    int width = 0, height = 0, channels = 0;
+    std::vector<uint8_t> samples;
+};
+Result<Image16> readPng16(const std::string& path);  // 8-bit inputs are rejected
+Result<Image8> readPng8(const std::string& path);    // 16-bit inputs are rejected
+
+// Writes `bytes` to `path` atomically (temporary file + rename). The message names the path.
+Status writeFileAtomically(const std::string& path, const std::string& bytes);
+Result<std::string> readFileBytes(const std::string& path);
+
+}  // namespace terrasynth

@@ -1,0 +1,218 @@
+// Exemplar readers: 16-bit PNG (+ sidecar or a given scale), raw float32 + sidecar, GeoTIFF via GDAL.
+#include <dirent.h>
+#include <unistd.h>
+
+#include <cerrno>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/sidecar.h"
+#include "terrasynth/heightfield_io.h"
+
+#ifdef TERRASYNTH_HAVE_GDAL
+#include <gdal.h>
+#endif
+
+namespace terrasynth {
+namespace {
+
+using detail::lowerExtension;
+using detail::readJsonFile;
+using detail::requireNumber;
+using detail::sidecarPathFor;
+
+void readProvenance(const nlohmann::json& j, ExemplarInfo* info) {
+    auto text = [&](const char* key) {
+        auto it = j.find(key);
+        return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
+    };
+    info->terrain_class = text("terrain_class");
+    info->source = text("source");
+    info->license = text("license");
+}
+
+Status readTypeMask(const nlohmann::json& j, const std::string& sidecar, Exemplar* exemplar) {
+    auto it = j.find("type_mask");
+    if (it == j.end()) return Status::ok();
+    if (!it->is_string()) return Status::error(sidecar + ": field \"type_mask\" must be a file name");
+    const std::string mask_path = detail::directoryOf(sidecar) + it->get<std::string>();
+    auto mask = readPng8(mask_path);
+    if (!mask) return mask.status();
+    if (mask->width != exemplar->field.width || mask->height != exemplar->field.height || mask->channels != 1)
+        return Status::error(mask_path + ": type mask must be 8-bit gray of the exemplar's size");
+    exemplar->type_mask = std::move(mask->samples);
+    auto names = j.find("type_names");
+    if (names != j.end() && names->is_array())
+        for (const auto& n : *names) exemplar->type_mask_names.push_back(n.is_string() ? n.get<std::string>() : "");
+    for (uint8_t v : exemplar->type_mask)
+        if (v == 255) return Status::error(mask_path + ": value 255 is reserved (use 0..254)");
+    return Status::ok();
+}
+
+Result<Exemplar> readPngExemplar(const std::string& path, const PlainPngScale* plain) {
+    auto image = readPng16(path);
+    if (!image) return image.status();
+    if (image->channels != 1)
+        return Status::error(path + ": expected a single-channel (grayscale) 16-bit PNG, found " +
+                             std::to_string(image->channels) + " channels");
+    Exemplar exemplar;
+    exemplar.info.name = detail::fileStem(path);
+    exemplar.info.path = path;
+    Heightfield& field = exemplar.field;
+    field.width = image->width;
+    field.height = image->height;
+    field.heights.resize(image->samples.size());
+
+    const std::string sidecar = sidecarPathFor(path);
+    auto json = readJsonFile(sidecar);
+    if (json) {
+        const nlohmann::json& j = json.value();
+        auto lo = requireNumber(j, "height_min_m", sidecar);
+        if (!lo) return lo.status();
+        auto hi = requireNumber(j, "height_max_m", sidecar);
+        if (!hi) return hi.status();
+        if (!(hi.value() >= lo.value()))
+            return Status::error(sidecar + ": height_max_m must not be below height_min_m");
+        Status spacing = detail::readSpacing(j, sidecar, &field.meters_per_pixel_x, &field.meters_per_pixel_y);
+        if (!spacing) return spacing;
+        for (const char* key : {"width", "height"}) {
+            auto it = j.find(key);
+            const int actual = key[0] == 'w' ? field.width : field.height;
+            if (it != j.end() && (!it->is_number_integer() || it->get<int>() != actual))
+                return Status::error(sidecar + ": field \"" + key + "\" does not match the PNG (" +
+                                     std::to_string(actual) + ")");
+        }
+        const double scale = (hi.value() - lo.value()) / 65535.0;
+        for (size_t i = 0; i < field.heights.size(); ++i)
+            field.heights[i] = static_cast<float>(lo.value() + image->samples[i] * scale);
+        readProvenance(j, &exemplar.info);
+        Status mask = readTypeMask(j, sidecar, &exemplar);
+        if (!mask) return mask;
+    } else if (plain) {
+        if (!(plain->meters_per_pixel > 0.0))
+            return Status::error(path + ": a plain PNG needs a positive horizontal spacing (meters per pixel)");
+        field.meters_per_pixel_x = field.meters_per_pixel_y = plain->meters_per_pixel;
+        for (size_t i = 0; i < field.heights.size(); ++i)
+            field.heights[i] = static_cast<float>(plain->height_offset_m + image->samples[i] * plain->meters_per_unit);
+    } else {
+        return Status::error(path + ": no sidecar (" + json.message() +
+                             "); give a sidecar or a vertical scale and spacing for a plain 16-bit PNG");
+    }
+    return exemplar;
+}
+
+Result<Exemplar> readRawF32Exemplar(const std::string& path) {
+    const std::string sidecar = sidecarPathFor(path);
+    auto json = readJsonFile(sidecar);
+    if (!json) return Status::error(path + ": raw float32 needs a sidecar: " + json.message());
+    const nlohmann::json& j = json.value();
+    Exemplar exemplar;
+    exemplar.info.name = detail::fileStem(path);
+    exemplar.info.path = path;
+    auto w = requireNumber(j, "width", sidecar);
+    if (!w) return w.status();
+    auto h = requireNumber(j, "height", sidecar);
+    if (!h) return h.status();
+    if (w.value() < 1 || h.value() < 1 || w.value() > 65536 || h.value() > 65536)
+        return Status::error(sidecar + ": width and height must be 1..65536");
+    Heightfield& field = exemplar.field;
+    field.width = static_cast<int>(w.value());
+    field.height = static_cast<int>(h.value());
+    Status spacing = detail::readSpacing(j, sidecar, &field.meters_per_pixel_x, &field.meters_per_pixel_y);
+    if (!spacing) return spacing;
+    auto bytes = readFileBytes(path);
+    if (!bytes) return bytes.status();
+    const size_t expected = static_cast<size_t>(field.width) * field.height * sizeof(float);
+    if (bytes->size() != expected)
+        return Status::error(path + ": expected " + std::to_string(expected) + " bytes for " +
+                             std::to_string(field.width) + "x" + std::to_string(field.height) +
+                             " float32, found " + std::to_string(bytes->size()) + " (truncated?)");
+    field.heights.resize(static_cast<size_t>(field.width) * field.height);
+    std::memcpy(field.heights.data(), bytes->data(), expected);  // little-endian hosts only (x86, ARM)
+    readProvenance(j, &exemplar.info);
+    Status mask = readTypeMask(j, sidecar, &exemplar);
+    if (!mask) return mask;
+    return exemplar;
+}
+
+#ifdef TERRASYNTH_HAVE_GDAL
+Result<Exemplar> readGdalExemplar(const std::string& path) {
+    GDALAllRegister();
+    GDALDatasetH dataset = GDALOpen(path.c_str(), GA_ReadOnly);
+    if (!dataset) return Status::error(path + ": GDAL cannot open this file");
+    Exemplar exemplar;
+    exemplar.info.name = detail::fileStem(path);
+    exemplar.info.path = path;
+    Heightfield& field = exemplar.field;
+    field.width = GDALGetRasterXSize(dataset);
+    field.height = GDALGetRasterYSize(dataset);
+    double transform[6];
+    if (GDALGetGeoTransform(dataset, transform) != CE_None) {
+        GDALClose(dataset);
+        return Status::error(path + ": no geotransform, cannot tell the spacing");
+    }
+    field.meters_per_pixel_x = std::fabs(transform[1]);
+    field.meters_per_pixel_y = std::fabs(transform[5]);
+    field.heights.resize(static_cast<size_t>(field.width) * field.height);
+    GDALRasterBandH band = GDALGetRasterBand(dataset, 1);
+    const CPLErr err = GDALRasterIO(band, GF_Read, 0, 0, field.width, field.height, field.heights.data(),
+                                    field.width, field.height, GDT_Float32, 0, 0);
+    GDALClose(dataset);
+    if (err != CE_None) return Status::error(path + ": GDAL read failed");
+    return exemplar;
+}
+#endif
+
+}  // namespace
+
+bool gdalAvailable() {
+#ifdef TERRASYNTH_HAVE_GDAL
+    return true;
+#else
+    return false;
+#endif
+}
+
+Result<Exemplar> readExemplar(const std::string& path, const PlainPngScale* plain) {
+    const std::string ext = lowerExtension(path);
+    Result<Exemplar> result = Status::error(path + ": unsupported exemplar format \"" + ext +
+                                            "\" (use .png with sidecar, .f32/.raw with sidecar" +
+                                            (gdalAvailable() ? ", .tif" : "") + ")");
+    if (ext == ".png") {
+        result = readPngExemplar(path, plain);
+    } else if (ext == ".f32" || ext == ".raw") {
+        result = readRawF32Exemplar(path);
+#ifdef TERRASYNTH_HAVE_GDAL
+    } else if (ext == ".tif" || ext == ".tiff") {
+        result = readGdalExemplar(path);
+#endif
+    }
+    if (!result) return result;
+    Status valid = validateHeightfield(result->field);
+    if (!valid) return valid.withContext(path);
+    return result;
+}
+
+Result<std::vector<std::string>> listExemplarFiles(const std::string& directory) {
+    DIR* dir = ::opendir(directory.c_str());
+    if (!dir) return Status::error(directory + ": cannot open directory: " + std::strerror(errno));
+    std::vector<std::string> files;
+    const std::string prefix = directory.empty() || directory.back() == '/' ? directory : directory + "/";
+    while (dirent* entry = ::readdir(dir)) {
+        const std::string name = entry->d_name;
+        const std::string ext = lowerExtension(name);
+        const std::string full = prefix + name;
+        const bool has_sidecar = ::access(sidecarPathFor(full).c_str(), R_OK) == 0;
+        if (((ext == ".png" || ext == ".f32" || ext == ".raw") && has_sidecar) ||
+            (gdalAvailable() && (ext == ".tif" || ext == ".tiff")))
+            files.push_back(full);
+    }
+    ::closedir(dir);
+    std::sort(files.begin(), files.end());
+    if (files.empty()) return Status::error(directory + ": no exemplar files (PNG/F32 with JSON sidecar)");
+    return files;
+}
+
+}  // namespace terrasynth

@@ -1,0 +1,72 @@
+#include "core/sidecar.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "terrasynth/heightfield_io.h"
+
+namespace terrasynth::detail {
+
+std::string sidecarPathFor(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    const size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return path + ".json";
+    return path.substr(0, dot) + ".json";
+}
+
+std::string fileStem(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+    const size_t dot = name.find_last_of('.');
+    return dot == std::string::npos ? name : name.substr(0, dot);
+}
+
+std::string directoryOf(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+std::string lowerExtension(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    const size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+Result<nlohmann::json> readJsonFile(const std::string& path) {
+    auto bytes = readFileBytes(path);
+    if (!bytes) return bytes.status();
+    nlohmann::json j = nlohmann::json::parse(bytes.value(), nullptr, /*allow_exceptions=*/false);
+    if (j.is_discarded()) return Status::error(path + ": malformed JSON");
+    if (!j.is_object()) return Status::error(path + ": expected a JSON object at the top level");
+    return j;
+}
+
+Result<double> requireNumber(const nlohmann::json& j, const char* key, const std::string& file) {
+    auto it = j.find(key);
+    if (it == j.end()) return Status::error(file + ": missing field \"" + key + "\"");
+    if (!it->is_number()) return Status::error(file + ": field \"" + key + "\" must be a number");
+    const double v = it->get<double>();
+    if (!std::isfinite(v)) return Status::error(file + ": field \"" + key + "\" is not finite");
+    return v;
+}
+
+Status readSpacing(const nlohmann::json& j, const std::string& file, double* x, double* y) {
+    auto it = j.find("meters_per_pixel");
+    if (it == j.end()) return Status::error(file + ": missing field \"meters_per_pixel\"");
+    if (it->is_number()) {
+        *x = *y = it->get<double>();
+    } else if (it->is_array() && it->size() == 2 && (*it)[0].is_number() && (*it)[1].is_number()) {
+        *x = (*it)[0].get<double>();
+        *y = (*it)[1].get<double>();
+    } else {
+        return Status::error(file + ": field \"meters_per_pixel\" must be a number or [x, y]");
+    }
+    if (!(*x > 0.0 && *y > 0.0 && *x <= 1e5 && *y <= 1e5))
+        return Status::error(file + ": field \"meters_per_pixel\" must be in (0, 100000]");
+    return Status::ok();
+}
+
+}  // namespace terrasynth::detail

@@ -1,0 +1,20 @@
+// Helpers shared by the tests: where the data lives, scratch paths, small real-data crops.
+#pragma once
+
+#include <string>
+
+#include "terrasynth/heightfield.h"
+
+namespace terrasynth::test {
+
+std::string dataDir();             // shipped defaults: <repo>/data
+std::string sharedExemplarsDir();  // ../shared/exemplars
+std::string binDir();              // built executables
+// A fresh, empty scratch directory for one test: <build>/test_tmp/<name>.
+std::string scratchDir(const std::string& name);
+// Loads a shipped or shared exemplar (by stem, e.g. "orom_alaska") and aborts the test on error.
+Heightfield loadExemplarField(const std::string& stem);
+// Crop of a field (x0,y0,w,h), same spacing.
+Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h);
+
+}  // namespace terrasynth::test
