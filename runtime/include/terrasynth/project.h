@@ -1,0 +1,48 @@
+// terrasynth/project.h: the .tsyn project file (JSON, versioned; docs/project-format.md).
+//
+// A project names its exemplars (or a prebuilt database), the terrain extent and spacing, the
+// synthesis parameters and seed, and the user's edits (constraints, layers). Paths inside a project
+// are relative to the project file's folder.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "terrasynth/synthesizer.h"
+
+namespace terrasynth {
+
+struct Project {
+    static constexpr int kFormatVersion = 1;
+    std::string path;                      // the file it was loaded from ("" when new)
+    std::vector<std::string> exemplars;    // exemplar files or folders (absolute after loading)
+    std::string database;                  // prebuilt .tsdb; "" = cache beside the project
+    int database_levels = 6;               // L
+    double meters_per_pixel = 0.0;         // 0 = coarsest exemplar spacing
+    int width = 1024, height = 1024;       // terrain extent in pixels (the world itself is unbounded)
+    int64_t origin_x = 0, origin_y = 0;    // global pixel of the extent's north-west corner
+    SynthesisParams synthesis;
+    // Sections owned by other modules, kept verbatim so loading and saving never drops them.
+    nlohmann::json constraints = nlohmann::json::object();
+    nlohmann::json layers = nlohmann::json::array();
+
+    // Where the database cache lives: `database` if set, else "<project stem>.tsdb" beside it.
+    std::string databaseCachePath() const;
+};
+
+// Errors name the file and the JSON field, e.g. "world.tsyn: synthesis.jitter: must be in [0, 1]".
+Result<Project> loadProject(const std::string& path);
+Result<Project> parseProject(const std::string& json_text, const std::string& path_for_messages,
+                             const std::string& base_dir);
+// Atomic: the previous file survives any failure.
+Status saveProject(const Project& project, const std::string& path);
+std::string projectToJson(const Project& project);
+
+// Loads the project's database (from `database`, or the cache rebuilt when stale).
+Result<std::shared_ptr<const ExemplarDatabase>> openProjectDatabase(const Project& project,
+                                                                    const DatabaseBuildOptions& build = {});
+
+}  // namespace terrasynth

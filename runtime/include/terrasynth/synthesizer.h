@@ -1,0 +1,84 @@
+// terrasynth/synthesizer.h: parallel pixel-based terrain synthesis (Gain et al. 2015, section 4).
+//
+// The terrain is a pure function of (database, parameters, seed, pixel): synthesizing any window
+// gives bit-identical heights to synthesizing a larger window that contains it, on the same device
+// and backend. Windows are addressed in the global pixel grid of the output level, so the world is
+// unbounded in every direction and adjacent tiles meet without stitching.
+//
+// Threading: a Synthesizer owns an OpenCL queue and scratch buffers and is not thread-safe; create
+// one per worker thread. Several synthesizers may share one database.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "terrasynth/database.h"
+#include "terrasynth/heightfield.h"
+#include "terrasynth/status.h"
+
+namespace terrasynth {
+
+struct SynthesisParams {
+    uint32_t seed = 1;
+    float jitter = 0.4f;        // r of eq. 1, in pixels of each level; 0..1
+    int correction_passes = 2;  // passes per level, each of 4 subpasses (paper: 2); 0..4
+    // Coarsest synthesis level M (paper s4). -1: the database's coarsest level L.
+    int coarsest_level = -1;
+};
+
+// A rectangle of the global pixel grid at some pyramid level (x east, y south).
+struct PixelWindow {
+    int64_t x = 0, y = 0;
+    int width = 0, height = 0;
+};
+
+struct SynthesisOutput {
+    // Heights in metres: exemplar height at S plus V (s4), spacing = database spacing * 2^level.
+    Heightfield heights;
+    // Filled when requested: per pixel the exemplar coordinate it draws from, in pixels of that
+    // exemplar at this level (x, y), and the exemplar index (database order).
+    std::vector<float> source_x, source_y;
+    std::vector<uint8_t> source_exemplar;
+};
+
+enum class SynthesisBackend {
+    OpenCL,     // kernels/*.cl on the first OpenCL device (PoCL on CPUs)
+    Reference,  // plain C++ (runtime/src/synth), the executable specification of the kernels
+};
+
+struct SynthesizerOptions {
+    SynthesisBackend backend = SynthesisBackend::OpenCL;
+    // OpenCL device selection: "" = first GPU if any, else first device; otherwise a substring of
+    // the platform or device name. TERRASYNTH_OPENCL_DEVICE overrides it.
+    std::string device;
+};
+
+class Synthesizer {
+public:
+    // Uploads the database to the device (OpenCL) and compiles the kernels. Errors: no OpenCL
+    // platform/device, kernel build log, out of device memory.
+    static Result<std::unique_ptr<Synthesizer>> create(std::shared_ptr<const ExemplarDatabase> db,
+                                                       const SynthesizerOptions& options = {});
+    virtual ~Synthesizer() = default;
+
+    // Synthesizes `window` of the given output level (0 = finest, up to coarsest_level).
+    // Preconditions: 1 <= width, height <= 16384.
+    virtual Result<SynthesisOutput> synthesize(const PixelWindow& window, const SynthesisParams& params,
+                                               int output_level = 0, bool want_sources = false) = 0;
+
+    // Device name, e.g. "pthread-skylake-avx512" or "reference C++".
+    virtual std::string deviceName() const = 0;
+    // Peak bytes of synthesis state (all levels, including margins) used by the last call,
+    // divided by the output pixels.
+    virtual double lastBytesPerPixel() const = 0;
+
+    const ExemplarDatabase& database() const { return *db_; }
+
+protected:
+    explicit Synthesizer(std::shared_ptr<const ExemplarDatabase> db) : db_(std::move(db)) {}
+    std::shared_ptr<const ExemplarDatabase> db_;
+};
+
+}  // namespace terrasynth
