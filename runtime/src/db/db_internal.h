@@ -1,0 +1,70 @@
+// Private building blocks of the exemplar database (runtime/include/terrasynth/database.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "terrasynth/database.h"
+
+namespace terrasynth::db {
+
+// Number of PCA modes kept per pixel for PatchMatch distances (more than the 4 stored, so the
+// similarity table sees finer neighbourhood detail than synthesis does).
+constexpr int kMatchModes = 8;
+constexpr int kNeighbourhoodSide = 5;
+constexpr int kNeighbourhoodSize = kNeighbourhoodSide * kNeighbourhoodSide;
+
+// Gaussian pyramid E^0..E^levels (paper s4: a pyramid, not a stack). Level i+1 is level i filtered
+// with the binomial [1 3 3 1]/8 and decimated by two, floor(size/2) per side, so level-(i+1) pixel p
+// sits at level-i coordinate 2p + 0.5 (pixel centres at integers).
+std::vector<Heightfield> buildGaussianPyramid(const Heightfield& base, int levels);
+
+// Per pixel of one exemplar level: weighted mean height of the 5x5 neighbourhood and the
+// sqrt(weight)-scaled deviations from it (so squared distances are Gaussian-weighted).
+struct NeighbourhoodFeatures {
+    int width = 0, height = 0;
+    std::vector<float> mean;        // width*height
+    std::vector<float> deviations;  // width*height*25
+};
+NeighbourhoodFeatures extractNeighbourhoods(const Heightfield& level);
+// The Gaussian weights of the 5x5 window (sum 1), row-major.
+const std::array<float, kNeighbourhoodSize>& neighbourhoodWeights();
+
+// Principal axes of the deviation vectors of all exemplars at one level, strongest first.
+struct PcaBasis {
+    std::array<std::array<float, kNeighbourhoodSize>, kMatchModes> axes{};
+    std::array<double, kMatchModes> variance{};
+};
+PcaBasis fitPca(const std::vector<const NeighbourhoodFeatures*>& exemplars);
+// Projects every pixel's deviations onto the first `modes` axes: width*height*modes floats.
+std::vector<float> projectFeatures(const NeighbourhoodFeatures& features, const PcaBasis& basis, int modes);
+
+// Shelf packing of exemplar rectangles with kAtlasGutter pixels around each.
+struct AtlasLayout {
+    int width = 0, height = 0;
+    std::vector<AtlasRect> rects;
+};
+AtlasLayout packAtlas(const std::vector<std::pair<int, int>>& sizes);
+
+// PatchMatch (Barnes et al. 2009) over per-pixel feature vectors of an atlas: for each pixel of an
+// exemplar, the most similar *eligible* pixel: eligible[q] true, and q in another exemplar or at
+// least kSimilarSeparation away (Chebyshev). Jacobi-style iterations (every pixel reads the previous
+// iteration's field) make the result independent of the thread count.
+struct PatchMatchInput {
+    int width = 0, height = 0, dims = 0;
+    const float* features = nullptr;      // width*height*dims
+    const uint8_t* exemplar = nullptr;    // per pixel, kNoExemplar outside exemplars
+    const uint8_t* eligible = nullptr;    // per pixel: may be a match
+    uint32_t salt = 0;                    // varies the random choices (e.g. by level)
+};
+std::vector<uint32_t> patchMatch(const PatchMatchInput& input, int iterations, int threads);
+// Exhaustive search with the same rules, for tests.
+std::vector<uint32_t> bruteForceMatch(const PatchMatchInput& input);
+float featureDistance(const PatchMatchInput& input, uint32_t a, uint32_t b);
+
+// Runs body(row_begin, row_end) over [0, rows) on `threads` threads (0 = hardware).
+void parallelRows(int rows, int threads, const std::function<void(int, int)>& body);
+
+}  // namespace terrasynth::db
