@@ -1,0 +1,146 @@
+// `terrasynth export <project.tsyn> | --heightmap in.png  -o out.glb|.gltf|.png|.f32|.exr|.tif
+//   [--region X,Y,W,H] [--level L] [--tile 256] [--lods N] [--lod-method grid|simplify] [--quantize]
+//   [--colors] [--texture N] [--masks PREFIX [--mask-blur R]]`
+// Meshes (glTF 2.0) or heightmaps of a project's terrain or of any exemplar file; docs/export.md.
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "command_registry.h"
+#include "terrasynth/gltf_export.h"
+#include "terrasynth/heightfield_io.h"
+#include "terrasynth/terrain.h"
+
+namespace terrasynth::cli {
+namespace {
+
+const char* kCommand = "export";
+
+struct ExportArgs {
+    std::string project, heightmap, output, masks;
+    std::vector<int64_t> region;
+    int level = 0, tile = 256, lods = 1, texture = 0, mask_blur = 0;
+    std::string lod_method = "grid";
+    bool quantize = false, colors = false;
+};
+
+bool endsWith(const std::string& s, const std::string& tail) {
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// Where heights (and types) come from: a project's Terrain or a heightfield file.
+struct Input {
+    HeightSource heights;
+    TypeSource types;
+    std::vector<std::string> type_names;
+    std::function<Result<std::vector<uint8_t>>(const PixelWindow&, int)> types_for_masks;
+    PixelWindow extent;
+};
+
+Result<Input> openInput(const ExportArgs& a) {
+    Input in;
+    if (!a.heightmap.empty()) {
+        auto exemplar = readExemplar(a.heightmap);
+        if (!exemplar) return exemplar.status();
+        in.extent = {0, 0, exemplar->field.width, exemplar->field.height};
+        in.heights = heightSourceFromField(std::move(exemplar->field));
+        return in;
+    }
+    auto terrain = Terrain::open(a.project);
+    if (!terrain) return terrain.status();
+    std::shared_ptr<Terrain> t = *terrain;
+    in.extent = t->extent();
+    in.heights = [t](const PixelWindow& w, int level) { return t->heights(w, level); };
+    in.types = [t](const PixelWindow& w, int level) -> Result<std::vector<uint8_t>> {
+        auto out = t->synthesize(w, level, /*want_sources=*/true);
+        if (!out) return out.status();
+        return typesFromSources(out->source_exemplar, t->database().exemplar_type);
+    };
+    in.type_names = t->database().type_names;
+    return in;
+}
+
+Status runExport(const ExportArgs& a) {
+    if (a.project.empty() == a.heightmap.empty()) return Status::error("give either a project or --heightmap");
+    auto input = openInput(a);
+    if (!input) return input.status();
+    PixelWindow region = input->extent;
+    if (!a.region.empty()) {
+        if (a.region.size() != 4) return Status::error("--region: expected X,Y,W,H");
+        region = {a.region[0], a.region[1], static_cast<int>(a.region[2]), static_cast<int>(a.region[3])};
+    }
+    if (a.level > 0 && a.region.empty()) {  // the extent shrinks with the level
+        region.x >>= a.level, region.y >>= a.level;
+        region.width = std::max(2, region.width >> a.level), region.height = std::max(2, region.height >> a.level);
+    }
+
+    if (!a.masks.empty()) {
+        if (!input->types) return Status::error("--masks needs a project (a coordinate map), not --heightmap");
+        auto types = input->types(region, a.level);
+        if (!types) return types.status();
+        TypeMaskOptions mask_options;
+        mask_options.blur_radius = a.mask_blur;
+        auto paths = writeTypeMasks(a.masks, region.width, region.height, *types, input->type_names, mask_options);
+        if (!paths) return paths.status();
+        for (const std::string& p : *paths) std::printf("wrote %s\n", p.c_str());
+    }
+
+    if (!endsWith(a.output, ".glb") && !endsWith(a.output, ".gltf")) {
+        auto field = input->heights(region, a.level);
+        if (!field) return field.status();
+        const double origin_x = region.x * field->meters_per_pixel_x, origin_y = -region.y * field->meters_per_pixel_y;
+        if (Status s = exportHeightmap(a.output, *field, origin_x, origin_y); !s) return s;
+        std::printf("wrote %s (%dx%d heights)\n", a.output.c_str(), field->width, field->height);
+        return Status::ok();
+    }
+
+    GltfExportOptions options;
+    options.region = region;
+    options.level = a.level;
+    options.tile_size = a.tile;
+    options.lods = a.lods;
+    if (a.lod_method == "simplify") options.lod_method = LodMethod::Simplify;
+    else if (a.lod_method != "grid") return Status::error("--lod-method: expected grid or simplify, got " + a.lod_method);
+    options.quantize = a.quantize;
+    options.vertex_colors = a.colors;
+    options.texture_size = a.texture;
+    if (a.colors || a.texture > 0) options.types = input->types;
+    auto stats = exportGltf(a.output, input->heights, options);
+    if (!stats) return stats.status();
+    std::printf("wrote %s: %d x %d tiles, %d LODs, %zu bytes (JSON %zu, binary %zu)\n", a.output.c_str(), stats->tiles_x,
+                stats->tiles_y, a.lods, stats->file_bytes, stats->json_bytes, stats->binary_bytes);
+    for (size_t k = 0; k < stats->lods.size(); ++k)
+        std::printf("  LOD %zu: %zu vertices, %zu triangles, geometric error up to %.2f m\n", k, stats->lods[k].vertices,
+                    stats->lods[k].triangles, stats->lods[k].max_geometric_error_m);
+    return Status::ok();
+}
+
+void addExportCommand(CLI::App& app) {
+    auto a = std::make_shared<ExportArgs>();
+    CLI::App* cmd = app.add_subcommand("export", "Export terrain as glTF 2.0 (tiles + LODs), a heightmap or type masks");
+    cmd->add_option("project", a->project, "Project file (.tsyn)");
+    cmd->add_option("--heightmap", a->heightmap, "Export this heightfield file (any exemplar format) instead of a project");
+    cmd->add_option("-o,--output", a->output,
+                    "Output: .glb/.gltf mesh, or .png (16-bit + sidecar) / .f32 / .exr / .tif heightmap")
+        ->required();
+    cmd->add_option("--region", a->region, "X,Y,W,H samples of the global grid (default: the project extent)")
+        ->delimiter(',');
+    cmd->add_option("--level", a->level, "Pyramid level (0 = full resolution)")->check(CLI::Range(0, 12));
+    cmd->add_option("--tile", a->tile, "Quads per tile side")->check(CLI::Range(1, 4096));
+    cmd->add_option("--lods", a->lods, "Levels of detail per tile (MSFT_lod)")->check(CLI::Range(1, 8));
+    cmd->add_option("--lod-method", a->lod_method, "grid (stitched, fast) or simplify (meshoptimizer)");
+    cmd->add_flag("--quantize", a->quantize, "KHR_mesh_quantization: 16-bit positions, 8-bit normals, 16-bit indices");
+    cmd->add_flag("--colors", a->colors, "Vertex colours: hypsometric tint (+ terrain types for projects)");
+    cmd->add_option("--texture", a->texture, "Embed a tint texture of at most N pixels per side")->check(CLI::Range(0, 8192));
+    cmd->add_option("--masks", a->masks, "Also write one PNG mask per terrain type: PREFIX<type>.png (projects only)");
+    cmd->add_option("--mask-blur", a->mask_blur, "Blur radius (pixels) for soft splat masks")->check(CLI::Range(0, 64));
+    cmd->callback([a] {
+        if (Status s = runExport(*a); !s) fail(kCommand, s.message());
+    });
+}
+
+const CommandRegistration kReg{"export", 60, addExportCommand};
+
+}  // namespace
+}  // namespace terrasynth::cli

@@ -1,0 +1,119 @@
+// terrasynth/gltf_export.h: exporting terrain as glTF 2.0 meshes, heightmaps and terrain-type masks
+// (docs/export.md). Plain data in, files out; no OSG or GL.
+//
+// glTF frame: the region's north-west corner is the origin, X east, Y up, Z south, metres (the
+// runtime's x east / y north / z up turned into glTF's Y-up, a proper rotation, so triangles keep
+// their counter-clockwise front faces). One node per tile under a root node; each tile node carries
+// its finest LOD and, with several LODs, the MSFT_lod extension naming one node per coarser LOD
+// (MSFT_screencoverage in its extras). Every file has a single buffer (the GLB BIN chunk, or
+// <stem>.bin beside a .gltf).
+//
+// Threading: every function here may be called from any thread; exportGltf itself meshes tiles on
+// `threads` worker threads and calls the sources from them concurrently (so sources must be
+// thread-safe; terrasynth::Terrain::heights is).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "terrasynth/heightfield.h"
+#include "terrasynth/status.h"
+#include "terrasynth/synthesizer.h"  // PixelWindow (header only; the export module does not link synth)
+
+namespace terrasynth {
+
+// Heights of a window of the global pixel grid at `level`, in metres. The window may reach outside
+// the requested export region by a one-pixel apron (for normals). Windows that overlap must agree.
+using HeightSource = std::function<Result<Heightfield>(const PixelWindow& window, int level)>;
+// Terrain type id per pixel of a window (width*height, row-major, 255 = unknown); optional.
+using TypeSource = std::function<Result<std::vector<uint8_t>>(const PixelWindow& window, int level)>;
+
+// A source over a heightfield in memory: pixel (x, y) of the global grid is field sample (x, y);
+// windows reaching outside repeat the edge samples. `level` must be 0. The field is copied.
+HeightSource heightSourceFromField(Heightfield field);
+// Types per pixel from a synthesis coordinate map: type = exemplar_type[source_exemplar[p]], 255
+// where the exemplar index is out of range (kNoExemplar).
+std::vector<uint8_t> typesFromSources(const std::vector<uint8_t>& source_exemplar,
+                                      const std::vector<int>& exemplar_type);
+
+enum class LodMethod {
+    // LOD k samples every 2^k-th pixel inside the tile and keeps every border sample, fanned into
+    // the coarse interior: any mix of LODs between neighbours is crack-free. Fast. The default.
+    StitchedGrid,
+    // LOD k keeps 4^-k of the triangles through meshoptimizer with the border locked: also
+    // crack-free, adapts to the relief, but about 10x slower and it leaves slivers along the border.
+    Simplify,
+};
+
+struct GltfExportOptions {
+    // The samples to export (global pixel grid at `level`): a region of W x H samples becomes
+    // (W-1) x (H-1) quads. Width and height >= 2.
+    PixelWindow region;
+    int level = 0;
+    // Quads per tile side, 1..4096. Neighbouring tiles share their edge samples.
+    int tile_size = 256;
+    // Levels of detail per tile, 1..8 (LOD k has about 4^-k of the triangles).
+    int lods = 1;
+    LodMethod lod_method = LodMethod::StitchedGrid;
+    // KHR_mesh_quantization (declared in extensionsRequired): positions as 16-bit integers on one
+    // uniform grid shared by all tiles (so shared edges stay bit-identical), normals as normalized
+    // 8-bit, uvs as normalized 16-bit, and every primitive kept under 65536 vertices so indices are
+    // 16-bit. All vertex attributes 4-byte aligned.
+    bool quantize = false;
+    // COLOR_0 per vertex from a hypsometric tint over the region's height range, blended with a
+    // colour per terrain type when `types` is set.
+    bool vertex_colors = false;
+    // > 0: embed a PNG base-colour texture of at most this many pixels per side with the same tint
+    // (and types); TEXCOORD_0 then spans the whole region. 0 = none. At most 8192.
+    int texture_size = 0;
+    // Optional terrain types per pixel for colours and the texture.
+    TypeSource types;
+    // Worker threads for meshing; 0 = hardware concurrency.
+    int threads = 0;
+};
+
+struct GltfLodStats {
+    size_t vertices = 0, triangles = 0;
+    float max_geometric_error_m = 0.0f;  // worst tile (TileMesh::geometric_error_m)
+};
+
+struct GltfExportStats {
+    int tiles_x = 0, tiles_y = 0;
+    std::vector<GltfLodStats> lods;      // per LOD, summed over tiles
+    size_t primitives = 0;
+    size_t json_bytes = 0, binary_bytes = 0;
+    size_t file_bytes = 0;               // everything written (GLB, or .gltf + .bin)
+    double quantum_m = 0.0;              // position quantisation step (quantized output), else 0
+};
+
+// Writes `path` (.glb binary, or .gltf JSON plus <stem>.bin beside it) from the heights `source`
+// gives for options.region. Files are written to temporaries and renamed into place. Errors: the
+// source's error (with the window), bad options (message names the option), unwritable paths.
+Result<GltfExportStats> exportGltf(const std::string& path, const HeightSource& source,
+                                   const GltfExportOptions& options);
+
+// Heightmap export, the format from the extension: .png (16-bit + JSON sidecar, readable as an
+// exemplar), .f32/.raw (float32 + sidecar), .exr (when built with OpenEXR), .tif/.tiff (float32
+// GeoTIFF written directly, no library needed: pixel-is-area, metres, a local projected frame whose
+// origin is (origin_x_m, origin_y_m) at the north-west corner with y north). Errors name the path.
+Status exportHeightmap(const std::string& path, const Heightfield& field, double origin_x_m = 0.0,
+                       double origin_y_m = 0.0);
+
+struct TypeMaskOptions {
+    // Box-blur radius in pixels; 0 = hard 0/255 masks. With blur the masks of all types still sum to
+    // 255 at every pixel (largest-remainder rounding), ready for texture splatting.
+    int blur_radius = 0;
+};
+
+// One 8-bit grayscale PNG per terrain type, "<prefix><type name>.png" (names sanitised to
+// [A-Za-z0-9_-]), 255 where the pixel's type is that type. `types` is width*height type ids (see
+// typesFromSources); pixels of unknown type (255) are 0 in every mask. Returns the paths written, in
+// type order; types absent from the map still get an (all-zero) mask so splat channels are stable.
+Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int width, int height,
+                                                const std::vector<uint8_t>& types,
+                                                const std::vector<std::string>& type_names,
+                                                const TypeMaskOptions& options = {});
+
+}  // namespace terrasynth

@@ -1,0 +1,15 @@
+// A minimal float32 GeoTIFF writer (baseline TIFF, one uncompressed strip, GeoTIFF 1.0 keys), so
+// heightmaps export as GeoTIFF without GDAL.
+#pragma once
+
+#include <string>
+
+#include "terrasynth/heightfield.h"
+
+namespace terrasynth::export_detail {
+
+// Bytes of a little-endian TIFF: width x height float32 samples, ModelPixelScale = spacing,
+// ModelTiepoint (0,0) -> (origin_x_m, origin_y_m), pixel-is-area, projected model in metres.
+std::string encodeGeoTiff(const Heightfield& field, double origin_x_m, double origin_y_m);
+
+}  // namespace terrasynth::export_detail
