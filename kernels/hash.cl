@@ -20,3 +20,8 @@ uint ts_hash3(int x, int y, uint salt) {
 float ts_hash_signed(uint h) {
     return (float)(h >> 8) * (2.0f / 16777215.0f) - 1.0f;
 }
+
+// Salt for one use of randomness at one level: purpose 0 = initialisation, 1/2 = jitter x/y.
+uint ts_level_salt(uint seed, int level, uint purpose) {
+    return ts_hash_u32(seed ^ ts_hash_u32((uint)level * 16u + purpose));
+}

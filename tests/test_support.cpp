@@ -51,3 +51,18 @@ Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h) {
 }
 
 }  // namespace terrasynth::test
+
+namespace terrasynth::test {
+std::shared_ptr<const ExemplarDatabase> defaultDatabase() {
+    static std::shared_ptr<const ExemplarDatabase> db = [] {
+        const std::string cache = env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + std::string("/default.tsdb");
+        auto loaded = loadOrBuildDatabase({dataDir() + "/exemplars"}, DatabaseBuildOptions{}, cache);
+        if (!loaded) {
+            ADD_FAILURE() << loaded.message();
+            return std::shared_ptr<const ExemplarDatabase>();
+        }
+        return loaded.value();
+    }();
+    return db;
+}
+}  // namespace terrasynth::test

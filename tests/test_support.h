@@ -18,3 +18,13 @@ Heightfield loadExemplarField(const std::string& stem);
 Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h);
 
 }  // namespace terrasynth::test
+
+#include <memory>
+
+#include "terrasynth/database.h"
+
+namespace terrasynth::test {
+// The database of the shipped default exemplars, built once and cached in the build tree
+// (<build>/test_tmp/default.tsdb, rebuilt when stale) so test executables share it.
+std::shared_ptr<const ExemplarDatabase> defaultDatabase();
+}  // namespace terrasynth::test

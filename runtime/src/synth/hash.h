@@ -25,3 +25,12 @@ inline float hashSigned(uint32_t h) {
 }
 
 }  // namespace terrasynth::synth
+
+namespace terrasynth::synth {
+
+// Salt for one use of randomness at one level: purpose 0 = initialisation, 1/2 = jitter x/y.
+inline uint32_t levelSalt(uint32_t seed, int level, uint32_t purpose) {
+    return hashU32(seed ^ hashU32(static_cast<uint32_t>(level) * 16u + purpose));
+}
+
+}  // namespace terrasynth::synth

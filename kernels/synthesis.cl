@@ -1,0 +1,158 @@
+// Parallel pixel-based terrain synthesis, Gain, Merry & Marais 2015 section 4.
+// Plain C++ reference: runtime/src/synth/reference_kernels.cpp (same operations, same order).
+// Tunables (-D): none change results; work-group sizes are chosen by the host.
+//
+// State per synthesis pixel: float4(S.x, S.y, V, spare) with S an atlas coordinate of the level.
+// Database per level: appearance (ushort4, dequantised with offset + scale), similar (uint, C_2),
+// exemplar (uchar), rects (int4 x, y, w, h per exemplar), heights (float).
+
+#pragma OPENCL FP_CONTRACT OFF
+
+#define INTERIOR_MARGIN 2
+
+typedef struct {
+    int x, y, width, height;  // region of the global grid held by a state buffer
+} Region;
+
+float4 dequantise(float4 q, float4 offset, float4 scale) {
+    return (float4)(offset.x + scale.x * q.x, offset.y + scale.y * q.y, offset.z + scale.z * q.z,
+                    offset.w + scale.w * q.w);
+}
+
+float4 lerp4(float4 a, float4 b, float t) {
+    return (float4)(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.z + (b.z - a.z) * t, a.w + (b.w - a.w) * t);
+}
+
+float4 appearance_bilinear(global const ushort4* appearance, int width, float sx, float sy, float4 offset,
+                           float4 scale) {
+    const float fx = floor(sx), fy = floor(sy);
+    const float tx = sx - fx, ty = sy - fy;
+    const int i = (int)fy * width + (int)fx;
+    const float4 a00 = convert_float4(appearance[i]), a10 = convert_float4(appearance[i + 1]);
+    const float4 a01 = convert_float4(appearance[i + width]), a11 = convert_float4(appearance[i + width + 1]);
+    return dequantise(lerp4(lerp4(a00, a10, tx), lerp4(a01, a11, tx), ty), offset, scale);
+}
+
+float4 state_at(global const float4* state, Region r, int lx, int ly) {
+    lx = clamp(lx, 0, r.width - 1);
+    ly = clamp(ly, 0, r.height - 1);
+    return state[ly * r.width + lx];
+}
+
+// g(u, v) of eq. 5: appearance at S(u + v) - v, plus V(u + v) on mode 0.
+float4 neighbour_appearance(global const ushort4* appearance, int width, float4 s, float vx, float vy,
+                            float4 offset, float4 scale) {
+    float4 a = appearance_bilinear(appearance, width, s.x - vx, s.y - vy, offset, scale);
+    a.x = a.x + s.z;
+    return a;
+}
+
+int floor_div2(int v) { return v >> 1; }
+
+// Coarsest level: random interior coordinates from the per-type seed lists, V = 0.
+kernel void init_level(global float4* state, Region region, global const uint* seeds, uint seed_count,
+                       int atlas_width, uint salt) {
+    const int lx = get_global_id(0), ly = get_global_id(1);
+    if (lx >= region.width || ly >= region.height) return;
+    const uint pick = seeds[ts_hash3(region.x + lx, region.y + ly, salt) % seed_count];
+    state[ly * region.width + lx] =
+        (float4)((float)(pick % (uint)atlas_width), (float)(pick / (uint)atlas_width), 0.0f, 0.0f);
+}
+
+// Eq. 1-2: each parent pixel initialises its 2x2 children with jittered coordinates.
+kernel void upsample_jitter(global const float4* parent, Region parent_region, global float4* child, Region child_region,
+                     global const uchar* parent_exemplar, int parent_width, global const int4* parent_rects,
+                     global const int4* child_rects, float jitter, uint salt_x, uint salt_y) {
+    const int lx = get_global_id(0), ly = get_global_id(1);
+    if (lx >= child_region.width || ly >= child_region.height) return;
+    const int gx = child_region.x + lx, gy = child_region.y + ly;
+    const int px = floor_div2(gx), py = floor_div2(gy);
+    const float4 p = parent[(py - parent_region.y) * parent_region.width + (px - parent_region.x)];
+    const int e = parent_exemplar[(int)floor(p.y) * parent_width + (int)floor(p.x)];
+    const int4 pr = parent_rects[e], cr = child_rects[e];
+    float cx = 2.0f * (p.x - (float)pr.x) + (float)(gx - 2 * px);
+    float cy = 2.0f * (p.y - (float)pr.y) + (float)(gy - 2 * py);
+    cx = cx + jitter * ts_hash_signed(ts_hash3(gx, gy, salt_x));
+    cy = cy + jitter * ts_hash_signed(ts_hash3(gx, gy, salt_y));
+    const float margin = (float)INTERIOR_MARGIN;
+    cx = fmin(fmax(cx, margin), (float)(cr.z - 1) - margin);
+    cy = fmin(fmax(cy, margin), (float)(cr.w - 1) - margin);
+    child[ly * child_region.width + lx] = (float4)((float)cr.x + cx, (float)cr.y + cy, p.z, 0.0f);
+}
+
+// Eq. 3-7 for the pixels of one parity class (one of the 4 subpasses), in place: a pixel of the
+// class only reads pixels of other classes (and itself), so there are no races.
+kernel void correct(global float4* state, Region region, int first_x, int first_y,
+                    global const ushort4* appearance, global const uint* similar, global const uchar* exemplar,
+                    global const int4* rects, int width, float4 offset, float4 scale) {
+    const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
+    if (lx >= region.width || ly >= region.height) return;
+    const int2 diagonals[4] = {(int2)(-1, -1), (int2)(1, -1), (int2)(-1, 1), (int2)(1, 1)};
+    float4 ns[4];
+    for (int k = 0; k < 4; ++k) {
+        const int dx = diagonals[k].x, dy = diagonals[k].y;
+        const float4 g0 = neighbour_appearance(appearance, width, state_at(state, region, lx + dx, ly + dy), 0.0f, 0.0f, offset, scale);
+        const float4 g1 = neighbour_appearance(appearance, width, state_at(state, region, lx + 2 * dx, ly + dy), (float)dx, 0.0f, offset, scale);
+        const float4 g2 = neighbour_appearance(appearance, width, state_at(state, region, lx + dx, ly + 2 * dy), 0.0f, (float)dy, offset, scale);
+        const float third = 1.0f / 3.0f;
+        ns[k] = (float4)((g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
+                         (g0.w + g1.w + g2.w) * third);
+    }
+    float best_cost = INFINITY, best_h = 0.0f;
+    int best_q = -1;
+    for (int ddy = -1; ddy <= 1; ++ddy) {
+        for (int ddx = -1; ddx <= 1; ++ddx) {
+            const float4 s = state_at(state, region, lx + ddx, ly + ddy);
+            const int cx = (int)floor(s.x - (float)ddx + 0.5f);
+            const int cy = (int)floor(s.y - (float)ddy + 0.5f);
+            const int c = cy * width + cx;
+            const int4 r = rects[exemplar[c]];
+            const int qx = clamp(cx, r.x + INTERIOR_MARGIN, r.x + r.z - 1 - INTERIOR_MARGIN);
+            const int qy = clamp(cy, r.y + INTERIOR_MARGIN, r.y + r.w - 1 - INTERIOR_MARGIN);
+            const int candidates[2] = {qy * width + qx, (int)similar[c]};
+            for (int j = 0; j < 2; ++j) {
+                const int q = candidates[j];
+                float4 d[4];
+                for (int k = 0; k < 4; ++k) {
+                    const float4 a = dequantise(convert_float4(appearance[q + diagonals[k].x + diagonals[k].y * width]), offset, scale);
+                    d[k] = ns[k] - a;
+                }
+                const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
+                float cost = 0.0f;
+                for (int k = 0; k < 4; ++k) {
+                    const float ex = d[k].x - h;
+                    cost = cost + (ex * ex + d[k].y * d[k].y + d[k].z * d[k].z + d[k].w * d[k].w);
+                }
+                cost = cost * (j == 0 ? 1.0f : 2.0f);
+                if (cost < best_cost) {
+                    best_cost = cost;
+                    best_q = q;
+                    best_h = h;
+                }
+            }
+        }
+    }
+    state[ly * region.width + lx] = (float4)((float)(best_q % width), (float)(best_q / width), best_h, 0.0f);
+}
+
+// Heights E(S) + V (bilinear in E) of the output window, and the sources when asked for.
+kernel void resolve(global const float4* state, Region region, Region out, global const float* heights,
+                    global const uchar* exemplar, global const int4* rects, int width, global float* out_heights,
+                    global float* out_source, global uchar* out_exemplar, int want_sources) {
+    const int x = get_global_id(0), y = get_global_id(1);
+    if (x >= out.width || y >= out.height) return;
+    const float4 s = state[(out.y - region.y + y) * region.width + (out.x - region.x + x)];
+    const float fx = floor(s.x), fy = floor(s.y);
+    const float tx = s.x - fx, ty = s.y - fy;
+    const int i = (int)fy * width + (int)fx;
+    const float top = heights[i] + (heights[i + 1] - heights[i]) * tx;
+    const float bot = heights[i + width] + (heights[i + width + 1] - heights[i + width]) * tx;
+    const int o = y * out.width + x;
+    out_heights[o] = top + (bot - top) * ty + s.z;
+    if (want_sources) {
+        const int e = exemplar[i];
+        out_source[2 * o] = s.x - (float)rects[e].x;
+        out_source[2 * o + 1] = s.y - (float)rects[e].y;
+        out_exemplar[o] = (uchar)e;
+    }
+}

@@ -1,0 +1,111 @@
+// Private: thin, checked OpenCL 1.2 plumbing. Every call's failure becomes a Status naming the call
+// and the error code (CLBlast style); objects are owned by small RAII handles.
+#pragma once
+
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "terrasynth/status.h"
+
+namespace terrasynth::cl {
+
+const char* errorName(cl_int code);
+
+// Returns from the enclosing function with a Status naming the call when it fails.
+#define TS_CL_CHECK(call)                                                                              \
+    do {                                                                                               \
+        const cl_int ts_cl_err_ = (call);                                                              \
+        if (ts_cl_err_ != CL_SUCCESS)                                                                  \
+            return ::terrasynth::Status::error(std::string("OpenCL: ") + #call + " failed: " +        \
+                                               ::terrasynth::cl::errorName(ts_cl_err_));               \
+    } while (0)
+
+// For calls that report through an out-parameter: TS_CL_CHECK_NAMED(err, "clCreateKernel(correct)").
+#define TS_CL_CHECK_NAMED(err, what)                                                                   \
+    do {                                                                                               \
+        if ((err) != CL_SUCCESS)                                                                       \
+            return ::terrasynth::Status::error(std::string("OpenCL: ") + (what) + " failed: " +       \
+                                               ::terrasynth::cl::errorName(err));                      \
+    } while (0)
+
+template <class T, cl_int (*Release)(T)>
+class Handle {
+public:
+    Handle() = default;
+    explicit Handle(T h) : h_(h) {}
+    ~Handle() { reset(); }
+    Handle(Handle&& o) noexcept : h_(std::exchange(o.h_, nullptr)) {}
+    Handle& operator=(Handle&& o) noexcept {
+        if (this != &o) {
+            reset();
+            h_ = std::exchange(o.h_, nullptr);
+        }
+        return *this;
+    }
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+    T get() const { return h_; }
+    T* out() { reset(); return &h_; }
+    void reset() {
+        if (h_) Release(h_);
+        h_ = nullptr;
+    }
+    explicit operator bool() const { return h_ != nullptr; }
+
+private:
+    T h_ = nullptr;
+};
+
+using ContextHandle = Handle<cl_context, clReleaseContext>;
+using QueueHandle = Handle<cl_command_queue, clReleaseCommandQueue>;
+using ProgramHandle = Handle<cl_program, clReleaseProgram>;
+using KernelHandle = Handle<cl_kernel, clReleaseKernel>;
+using BufferHandle = Handle<cl_mem, clReleaseMemObject>;
+
+struct DeviceChoice {
+    cl_platform_id platform = nullptr;
+    cl_device_id device = nullptr;
+    std::string name;  // "platform / device"
+};
+
+// "" picks the first GPU, else the first device of any type; otherwise the first device whose
+// platform or device name contains `hint`. TERRASYNTH_OPENCL_DEVICE overrides `hint`.
+Result<DeviceChoice> chooseDevice(const std::string& hint);
+
+// Source of kernels/<file_name>: the file in $TERRASYNTH_KERNEL_DIR when that is set (development),
+// else the copy baked into the binary.
+Result<std::string> kernelSource(const std::string& file_name);
+
+// Builds a program from the named kernel files concatenated in order; a failure carries the log.
+Result<ProgramHandle> buildProgram(cl_context context, cl_device_id device, const std::vector<std::string>& files,
+                                   const std::string& options);
+
+// Sets kernel arguments in order, each checked; the message names the kernel and argument index.
+class ArgSetter {
+public:
+    ArgSetter(cl_kernel kernel, const char* name) : kernel_(kernel), name_(name) {}
+    template <class T>
+    ArgSetter& operator()(const T& value) {
+        if (status_.isOk()) {
+            const cl_int err = clSetKernelArg(kernel_, index_, sizeof(T), &value);
+            if (err != CL_SUCCESS)
+                status_ = Status::error(std::string("OpenCL: clSetKernelArg(") + name_ + ", " + std::to_string(index_) +
+                                        ") failed: " + errorName(err));
+        }
+        ++index_;
+        return *this;
+    }
+    const Status& status() const { return status_; }
+
+private:
+    cl_kernel kernel_;
+    const char* name_;
+    cl_uint index_ = 0;
+    Status status_ = Status::ok();
+};
+
+}  // namespace terrasynth::cl

@@ -1,0 +1,239 @@
+// The OpenCL backend: the database lives in device buffers (one set per pyramid level, the atlas of
+// s4), the synthesis state in two buffers (current level and the one being upsampled into), and the
+// shared driver (synth/synthesis_driver.h) enqueues kernels/synthesis.cl step by step.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+
+#include "cl/cl_runtime.h"
+#include "synth/hash.h"
+#include "synth/reference_synthesizer.h"
+#include "synth/synthesis_driver.h"
+
+namespace terrasynth {
+namespace {
+
+using cl::ArgSetter;
+using cl::BufferHandle;
+using cl::KernelHandle;
+
+struct RegionArg {
+    cl_int x, y, width, height;
+};
+RegionArg toArg(const synth::LevelRegion& r) { return {r.x, r.y, r.width, r.height}; }
+
+struct DeviceLevel {
+    BufferHandle appearance, similar, exemplar, rects, heights, seeds;
+    cl_uint seed_count = 0;
+    cl_int width = 0;
+    cl_float4 offset{}, scale{};
+};
+
+// Work-group shape: a tunable (TERRASYNTH_CL_LOCAL_SIZE="32,2"); results do not depend on it.
+void localSize(size_t out[2]) {
+    out[0] = 32;
+    out[1] = 2;
+    if (const char* env = std::getenv("TERRASYNTH_CL_LOCAL_SIZE")) {
+        unsigned x = 0, y = 0;
+        if (std::sscanf(env, "%u,%u", &x, &y) == 2 && x > 0 && y > 0) out[0] = x, out[1] = y;
+    }
+}
+
+size_t roundUp(size_t value, size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
+
+class OpenClSynthesizer final : public Synthesizer, private synth::SynthesisSteps {
+public:
+    explicit OpenClSynthesizer(std::shared_ptr<const ExemplarDatabase> db) : Synthesizer(std::move(db)) {}
+
+    Status initialise(const SynthesizerOptions& options) {
+        auto device = cl::chooseDevice(options.device);
+        if (!device) return device.status();
+        device_ = device.value();
+        cl_int err = CL_SUCCESS;
+        const cl_context_properties props[] = {CL_CONTEXT_PLATFORM,
+                                               reinterpret_cast<cl_context_properties>(device_.platform), 0};
+        *context_.out() = clCreateContext(props, 1, &device_.device, nullptr, nullptr, &err);
+        TS_CL_CHECK_NAMED(err, "clCreateContext(" + device_.name + ")");
+        *queue_.out() = clCreateCommandQueue(context_.get(), device_.device, 0, &err);
+        TS_CL_CHECK_NAMED(err, "clCreateCommandQueue");
+        auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, "-cl-std=CL1.2");
+        if (!program) return program.status();
+        program_ = std::move(program.value());
+        for (auto [handle, name] : {std::pair{&init_, "init_level"}, std::pair{&upsample_, "upsample_jitter"},
+                                    std::pair{&correct_, "correct"}, std::pair{&resolve_, "resolve"}}) {
+            *handle->out() = clCreateKernel(program_.get(), name, &err);
+            TS_CL_CHECK_NAMED(err, std::string("clCreateKernel(") + name + ")");
+        }
+        localSize(local_);
+        return uploadDatabase();
+    }
+
+    Result<SynthesisOutput> synthesize(const PixelWindow& window, const SynthesisParams& params, int output_level,
+                                       bool want_sources) override {
+        size_t peak = 0;
+        auto out = synth::runSynthesis(*db_, window, params, output_level, want_sources, *this, &peak);
+        if (out) {
+            const double pixels = static_cast<double>(window.width) * window.height;
+            bytes_per_pixel_ = (peak * sizeof(cl_float4) + pixels * (want_sources ? 13.0 : 4.0)) / pixels;
+        }
+        return out;
+    }
+    std::string deviceName() const override { return device_.name; }
+    double lastBytesPerPixel() const override { return bytes_per_pixel_; }
+
+private:
+    Result<BufferHandle> upload(const void* data, size_t bytes) {
+        cl_int err = CL_SUCCESS;
+        BufferHandle buffer(clCreateBuffer(context_.get(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<size_t>(bytes, 4),
+                                           const_cast<void*>(data ? data : &err), &err));
+        if (err != CL_SUCCESS)
+            return Status::error(std::string("OpenCL: clCreateBuffer(database, ") + std::to_string(bytes) +
+                                 " bytes) failed: " + cl::errorName(err));
+        return buffer;
+    }
+
+    Status uploadDatabase() {
+        for (const DatabaseLevel& l : db_->levels) {
+            DeviceLevel d;
+            std::vector<cl_int4> rects;
+            for (const AtlasRect& r : l.rects) rects.push_back({{r.x, r.y, r.width, r.height}});
+            std::vector<uint32_t> seeds;
+            for (const auto& list : l.type_seeds) seeds.insert(seeds.end(), list.begin(), list.end());
+            if (seeds.empty()) return Status::error("database level without seed coordinates");
+            auto appearance = upload(l.appearance.data(), l.appearance.size() * sizeof(uint16_t));
+            auto similar = upload(l.similar.data(), l.similar.size() * sizeof(uint32_t));
+            auto exemplar = upload(l.exemplar.data(), l.exemplar.size());
+            auto rect_buffer = upload(rects.data(), rects.size() * sizeof(cl_int4));
+            auto heights = upload(l.height_m.data(), l.height_m.size() * sizeof(float));
+            auto seed_buffer = upload(seeds.data(), seeds.size() * sizeof(uint32_t));
+            for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &seed_buffer})
+                if (!*r) return r->status();
+            d.appearance = std::move(appearance.value());
+            d.similar = std::move(similar.value());
+            d.exemplar = std::move(exemplar.value());
+            d.rects = std::move(rect_buffer.value());
+            d.heights = std::move(heights.value());
+            d.seeds = std::move(seed_buffer.value());
+            d.seed_count = static_cast<cl_uint>(seeds.size());
+            d.width = l.width;
+            for (int m = 0; m < 4; ++m) d.offset.s[m] = l.appearance_offset[m], d.scale.s[m] = l.appearance_scale[m];
+            levels_.push_back(std::move(d));
+        }
+        return Status::ok();
+    }
+
+    // Grows a state buffer to hold `pixels` float4s (never shrinks, so tiles of one size reuse it).
+    Status reserve(BufferHandle& buffer, size_t& capacity, size_t pixels) {
+        if (capacity >= pixels && buffer) return Status::ok();
+        cl_int err = CL_SUCCESS;
+        *buffer.out() = clCreateBuffer(context_.get(), CL_MEM_READ_WRITE, pixels * sizeof(cl_float4), nullptr, &err);
+        TS_CL_CHECK_NAMED(err, "clCreateBuffer(state, " + std::to_string(pixels * sizeof(cl_float4)) + " bytes)");
+        capacity = pixels;
+        return Status::ok();
+    }
+
+    Status run(cl_kernel kernel, size_t width, size_t height) {
+        const size_t global[2] = {roundUp(width, local_[0]), roundUp(height, local_[1])};
+        TS_CL_CHECK(clEnqueueNDRangeKernel(queue_.get(), kernel, 2, nullptr, global, local_, 0, nullptr, nullptr));
+        return Status::ok();
+    }
+
+    Status init(int level, const synth::LevelRegion& region, uint32_t seed) override {
+        Status s = reserve(current_, current_capacity_, region.pixels());
+        if (!s) return s;
+        const DeviceLevel& d = levels_[level];
+        ArgSetter args(init_.get(), "init_level");
+        args(current_.get())(toArg(region))(d.seeds.get())(d.seed_count)(d.width)(synth::levelSalt(seed, level, 0));
+        if (!args.status()) return args.status();
+        return run(init_.get(), region.width, region.height);
+    }
+
+    Status upsample(int level, const synth::LevelRegion& parent, const synth::LevelRegion& child, float jitter,
+                    uint32_t seed) override {
+        Status s = reserve(next_, next_capacity_, child.pixels());
+        if (!s) return s;
+        const DeviceLevel& p = levels_[level + 1];
+        const DeviceLevel& c = levels_[level];
+        ArgSetter args(upsample_.get(), "upsample_jitter");
+        args(current_.get())(toArg(parent))(next_.get())(toArg(child))(p.exemplar.get())(p.width)(p.rects.get())(
+            c.rects.get())(jitter)(synth::levelSalt(seed, level, 1))(synth::levelSalt(seed, level, 2));
+        if (!args.status()) return args.status();
+        s = run(upsample_.get(), child.width, child.height);
+        std::swap(current_, next_);
+        std::swap(current_capacity_, next_capacity_);
+        return s;
+    }
+
+    Status correct(int level, const synth::LevelRegion& region, int parity_x, int parity_y) override {
+        const cl_int first_x = (parity_x - region.x) & 1, first_y = (parity_y - region.y) & 1;
+        const size_t count_x = (region.width - first_x + 1) / 2, count_y = (region.height - first_y + 1) / 2;
+        const DeviceLevel& d = levels_[level];
+        ArgSetter args(correct_.get(), "correct");
+        args(current_.get())(toArg(region))(first_x)(first_y)(d.appearance.get())(d.similar.get())(d.exemplar.get())(
+            d.rects.get())(d.width)(d.offset)(d.scale);
+        if (!args.status()) return args.status();
+        return run(correct_.get(), count_x, count_y);
+    }
+
+    Status resolve(int level, const synth::LevelRegion& region, const synth::LevelRegion& out, SynthesisOutput& output,
+                   bool want_sources) override {
+        const size_t pixels = out.pixels();
+        cl_int err = CL_SUCCESS;
+        BufferHandle heights(clCreateBuffer(context_.get(), CL_MEM_WRITE_ONLY, pixels * sizeof(float), nullptr, &err));
+        TS_CL_CHECK_NAMED(err, "clCreateBuffer(heights)");
+        BufferHandle sources(clCreateBuffer(context_.get(), CL_MEM_WRITE_ONLY, want_sources ? pixels * 2 * sizeof(float) : 4,
+                                            nullptr, &err));
+        TS_CL_CHECK_NAMED(err, "clCreateBuffer(sources)");
+        BufferHandle exemplars(clCreateBuffer(context_.get(), CL_MEM_WRITE_ONLY, want_sources ? pixels : 4, nullptr, &err));
+        TS_CL_CHECK_NAMED(err, "clCreateBuffer(source exemplars)");
+        const DeviceLevel& d = levels_[level];
+        ArgSetter args(resolve_.get(), "resolve");
+        args(current_.get())(toArg(region))(toArg(out))(d.heights.get())(d.exemplar.get())(d.rects.get())(d.width)(
+            heights.get())(sources.get())(exemplars.get())(cl_int(want_sources ? 1 : 0));
+        if (!args.status()) return args.status();
+        Status s = run(resolve_.get(), out.width, out.height);
+        if (!s) return s;
+        TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), heights.get(), CL_FALSE, 0, pixels * sizeof(float),
+                                        output.heights.heights.data(), 0, nullptr, nullptr));
+        if (want_sources) {
+            std::vector<float> interleaved(pixels * 2);
+            TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), sources.get(), CL_FALSE, 0, pixels * 2 * sizeof(float),
+                                            interleaved.data(), 0, nullptr, nullptr));
+            TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), exemplars.get(), CL_FALSE, 0, pixels,
+                                            output.source_exemplar.data(), 0, nullptr, nullptr));
+            TS_CL_CHECK(clFinish(queue_.get()));
+            for (size_t i = 0; i < pixels; ++i) {
+                output.source_x[i] = interleaved[2 * i];
+                output.source_y[i] = interleaved[2 * i + 1];
+            }
+        }
+        TS_CL_CHECK(clFinish(queue_.get()));
+        return Status::ok();
+    }
+
+    cl::DeviceChoice device_;
+    cl::ContextHandle context_;
+    cl::QueueHandle queue_;
+    cl::ProgramHandle program_;
+    KernelHandle init_, upsample_, correct_, resolve_;
+    std::vector<DeviceLevel> levels_;
+    BufferHandle current_, next_;
+    size_t current_capacity_ = 0, next_capacity_ = 0;
+    size_t local_[2] = {32, 2};
+    double bytes_per_pixel_ = 0.0;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<Synthesizer>> Synthesizer::create(std::shared_ptr<const ExemplarDatabase> db,
+                                                         const SynthesizerOptions& options) {
+    TERRASYNTH_REQUIRE(db != nullptr, "Synthesizer::create needs a database");
+    if (db->levels.empty()) return Status::error("database has no levels");
+    if (options.backend == SynthesisBackend::Reference) return std::unique_ptr<Synthesizer>(synth::createReferenceSynthesizer(db));
+    auto synthesizer = std::make_unique<OpenClSynthesizer>(std::move(db));
+    Status s = synthesizer->initialise(options);
+    if (!s) return s;
+    return std::unique_ptr<Synthesizer>(std::move(synthesizer));
+}
+
+}  // namespace terrasynth

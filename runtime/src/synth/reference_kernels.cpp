@@ -1,0 +1,190 @@
+// Reference implementation of kernels/synthesis.cl. Keep the two in lock-step: same operations in
+// the same order, float only (this file is compiled without FP contraction).
+#include "synth/reference_kernels.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "synth/hash.h"
+
+namespace terrasynth::synth {
+namespace {
+
+struct Vec4 {
+    float x, y, z, w;
+};
+
+Vec4 fetchAppearance(const DatabaseLevel& db, int index) {
+    const uint16_t* a = &db.appearance[static_cast<size_t>(index) * 4];
+    return {static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]), static_cast<float>(a[3])};
+}
+
+Vec4 dequantise(const DatabaseLevel& db, Vec4 q) {
+    return {db.appearance_offset[0] + db.appearance_scale[0] * q.x, db.appearance_offset[1] + db.appearance_scale[1] * q.y,
+            db.appearance_offset[2] + db.appearance_scale[2] * q.z, db.appearance_offset[3] + db.appearance_scale[3] * q.w};
+}
+
+float lerp(float a, float b, float t) { return a + (b - a) * t; }
+
+// A at a real-valued atlas coordinate (s4: real coordinates and bilinear sampling avoid snapping).
+Vec4 appearanceBilinear(const DatabaseLevel& db, float sx, float sy) {
+    const float fx = std::floor(sx), fy = std::floor(sy);
+    const float tx = sx - fx, ty = sy - fy;
+    const int i = static_cast<int>(fy) * db.width + static_cast<int>(fx);
+    const Vec4 a00 = fetchAppearance(db, i), a10 = fetchAppearance(db, i + 1);
+    const Vec4 a01 = fetchAppearance(db, i + db.width), a11 = fetchAppearance(db, i + db.width + 1);
+    const Vec4 top{lerp(a00.x, a10.x, tx), lerp(a00.y, a10.y, tx), lerp(a00.z, a10.z, tx), lerp(a00.w, a10.w, tx)};
+    const Vec4 bot{lerp(a01.x, a11.x, tx), lerp(a01.y, a11.y, tx), lerp(a01.z, a11.z, tx), lerp(a01.w, a11.w, tx)};
+    return dequantise(db, {lerp(top.x, bot.x, ty), lerp(top.y, bot.y, ty), lerp(top.z, bot.z, ty), lerp(top.w, bot.w, ty)});
+}
+
+float heightBilinear(const DatabaseLevel& db, float sx, float sy) {
+    const float fx = std::floor(sx), fy = std::floor(sy);
+    const float tx = sx - fx, ty = sy - fy;
+    const size_t i = static_cast<size_t>(fy) * db.width + static_cast<size_t>(fx);
+    const float top = lerp(db.height_m[i], db.height_m[i + 1], tx);
+    const float bot = lerp(db.height_m[i + db.width], db.height_m[i + db.width + 1], tx);
+    return lerp(top, bot, ty);
+}
+
+const PixelState& stateAt(const std::vector<PixelState>& state, const LevelRegion& r, int lx, int ly) {
+    lx = std::clamp(lx, 0, r.width - 1);
+    ly = std::clamp(ly, 0, r.height - 1);
+    return state[static_cast<size_t>(ly) * r.width + lx];
+}
+
+// g(u, v) of eq. 5 with u + v = the neighbour read and v = offset.
+Vec4 neighbourAppearance(const DatabaseLevel& db, const PixelState& s, float vx, float vy) {
+    Vec4 a = appearanceBilinear(db, s.x - vx, s.y - vy);
+    a.x = a.x + s.v;
+    return a;
+}
+
+}  // namespace
+
+void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t seed, int level,
+                   std::vector<PixelState>& state) {
+    std::vector<uint32_t> seeds;
+    for (const auto& list : db.type_seeds) seeds.insert(seeds.end(), list.begin(), list.end());
+    TERRASYNTH_REQUIRE(!seeds.empty(), "database level without seed coordinates");
+    state.assign(region.pixels(), PixelState{});
+    const uint32_t salt = levelSalt(seed, level, 0);
+    for (int ly = 0; ly < region.height; ++ly)
+        for (int lx = 0; lx < region.width; ++lx) {
+            const uint32_t pick = seeds[hash3(region.x + lx, region.y + ly, salt) % seeds.size()];
+            PixelState& s = state[static_cast<size_t>(ly) * region.width + lx];
+            s.x = static_cast<float>(pick % static_cast<uint32_t>(db.width));
+            s.y = static_cast<float>(pick / static_cast<uint32_t>(db.width));
+            s.v = 0.0f;
+        }
+}
+
+void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& child_db, const LevelRegion& parent_region,
+                       const std::vector<PixelState>& parent, const LevelRegion& child_region, float jitter,
+                       uint32_t seed, int child_level, std::vector<PixelState>& child) {
+    child.assign(child_region.pixels(), PixelState{});
+    const uint32_t salt_x = levelSalt(seed, child_level, 1), salt_y = levelSalt(seed, child_level, 2);
+    const float margin = static_cast<float>(kInteriorMargin);
+    for (int ly = 0; ly < child_region.height; ++ly)
+        for (int lx = 0; lx < child_region.width; ++lx) {
+            const int gx = child_region.x + lx, gy = child_region.y + ly;
+            const int px = floorDiv2(gx), py = floorDiv2(gy);
+            const PixelState& p = parent[static_cast<size_t>(py - parent_region.y) * parent_region.width + (px - parent_region.x)];
+            const int e = parent_db.exemplar[static_cast<size_t>(std::floor(p.y)) * parent_db.width +
+                                             static_cast<size_t>(std::floor(p.x))];
+            const AtlasRect& pr = parent_db.rects[e];
+            const AtlasRect& cr = child_db.rects[e];
+            // Parent pixel centre u maps to child coordinate 2u + 0.5; the child at offset o in {0,1}
+            // sits at 2u + 0.5 + (o - 0.5) = 2u + o (eq. 1 with pixel centres at integers).
+            float cx = 2.0f * (p.x - static_cast<float>(pr.x)) + static_cast<float>(gx - 2 * px);
+            float cy = 2.0f * (p.y - static_cast<float>(pr.y)) + static_cast<float>(gy - 2 * py);
+            cx = cx + jitter * hashSigned(hash3(gx, gy, salt_x));
+            cy = cy + jitter * hashSigned(hash3(gx, gy, salt_y));
+            cx = std::fmin(std::fmax(cx, margin), static_cast<float>(cr.width - 1) - margin);
+            cy = std::fmin(std::fmax(cy, margin), static_cast<float>(cr.height - 1) - margin);
+            PixelState& c = child[static_cast<size_t>(ly) * child_region.width + lx];
+            c.x = static_cast<float>(cr.x) + cx;
+            c.y = static_cast<float>(cr.y) + cy;
+            c.v = p.v;  // eq. 2
+        }
+}
+
+void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y,
+                      std::vector<PixelState>& state) {
+    static const int kDiagonals[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    const int first_x = (parity_x - region.x) & 1, first_y = (parity_y - region.y) & 1;
+    for (int ly = first_y; ly < region.height; ly += 2) {
+        for (int lx = first_x; lx < region.width; lx += 2) {
+            // N_S (eq. 6): each diagonal neighbour averaged over three ways of reaching it.
+            Vec4 ns[4];
+            for (int k = 0; k < 4; ++k) {
+                const int dx = kDiagonals[k][0], dy = kDiagonals[k][1];
+                const Vec4 g0 = neighbourAppearance(db, stateAt(state, region, lx + dx, ly + dy), 0.0f, 0.0f);
+                const Vec4 g1 = neighbourAppearance(db, stateAt(state, region, lx + 2 * dx, ly + dy), static_cast<float>(dx), 0.0f);
+                const Vec4 g2 = neighbourAppearance(db, stateAt(state, region, lx + dx, ly + 2 * dy), 0.0f, static_cast<float>(dy));
+                const float third = 1.0f / 3.0f;
+                ns[k] = {(g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
+                         (g0.w + g1.w + g2.w) * third};
+            }
+            float best_cost = INFINITY, best_h = 0.0f;
+            int best_q = -1;
+            // Candidates (eq. 3): C_j(S(p + D) - D) for the 3x3 neighbours D and j = 1, 2.
+            for (int ddy = -1; ddy <= 1; ++ddy) {
+                for (int ddx = -1; ddx <= 1; ++ddx) {
+                    const PixelState& s = stateAt(state, region, lx + ddx, ly + ddy);
+                    const int cx = static_cast<int>(std::floor(s.x - static_cast<float>(ddx) + 0.5f));
+                    const int cy = static_cast<int>(std::floor(s.y - static_cast<float>(ddy) + 0.5f));
+                    const int c = cy * db.width + cx;
+                    const AtlasRect& r = db.rects[db.exemplar[c]];
+                    const int qx = std::clamp(cx, r.x + kInteriorMargin, r.x + r.width - 1 - kInteriorMargin);
+                    const int qy = std::clamp(cy, r.y + kInteriorMargin, r.y + r.height - 1 - kInteriorMargin);
+                    const int candidates[2] = {qy * db.width + qx, static_cast<int>(db.similar[c])};
+                    for (int j = 0; j < 2; ++j) {
+                        const int q = candidates[j];
+                        Vec4 d[4];
+                        for (int k = 0; k < 4; ++k) {
+                            const Vec4 a = dequantise(db, fetchAppearance(db, q + kDiagonals[k][0] + kDiagonals[k][1] * db.width));
+                            d[k] = {ns[k].x - a.x, ns[k].y - a.y, ns[k].z - a.z, ns[k].w - a.w};
+                        }
+                        // Eq. 7: the best offset h moves mode 0 only, so it is the mean mode-0 gap.
+                        const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
+                        float cost = 0.0f;
+                        for (int k = 0; k < 4; ++k) {
+                            const float ex = d[k].x - h;
+                            cost = cost + (ex * ex + d[k].y * d[k].y + d[k].z * d[k].z + d[k].w * d[k].w);
+                        }
+                        cost = cost * (j == 0 ? 1.0f : 2.0f);  // kappa favours coherent patches
+                        if (cost < best_cost) {
+                            best_cost = cost;
+                            best_q = q;
+                            best_h = h;
+                        }
+                    }
+                }
+            }
+            PixelState& out = state[static_cast<size_t>(ly) * region.width + lx];
+            out.x = static_cast<float>(best_q % db.width);
+            out.y = static_cast<float>(best_q / db.width);
+            out.v = best_h;
+        }
+    }
+}
+
+void referenceResolve(const DatabaseLevel& db, const LevelRegion& region, const std::vector<PixelState>& state,
+                      const LevelRegion& out, float* heights, float* source_x, float* source_y,
+                      uint8_t* source_exemplar) {
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            const PixelState& s = state[static_cast<size_t>(out.y - region.y + y) * region.width + (out.x - region.x + x)];
+            const size_t o = static_cast<size_t>(y) * out.width + x;
+            heights[o] = heightBilinear(db, s.x, s.y) + s.v;
+            if (source_x) {
+                const int e = db.exemplar[static_cast<size_t>(std::floor(s.y)) * db.width + static_cast<size_t>(std::floor(s.x))];
+                source_x[o] = s.x - static_cast<float>(db.rects[e].x);
+                source_y[o] = s.y - static_cast<float>(db.rects[e].y);
+                source_exemplar[o] = static_cast<uint8_t>(e);
+            }
+        }
+}
+
+}  // namespace terrasynth::synth

@@ -1,0 +1,36 @@
+// Private: the plain C++ reference of every synthesis kernel (kernels/synthesis.cl), step for step
+// and with the same float arithmetic, so the OpenCL path can be checked against it
+// (tests/synth_differential_test.cpp) and so the algorithm can be read without OpenCL.
+#pragma once
+
+#include <vector>
+
+#include "synth/synthesis_plan.h"
+#include "terrasynth/database.h"
+
+namespace terrasynth::synth {
+
+// Per synthesis pixel: exemplar atlas coordinate S (x, y), height offset V, and a spare lane.
+struct PixelState {
+    float x = 0, y = 0, v = 0, spare = 0;
+};
+
+// Coarsest level: random interior coordinates from the per-type seed lists, V = 0.
+void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t seed, int level,
+                   std::vector<PixelState>& state);
+
+// Eq. 1-2: every parent pixel initialises its 2x2 children, jittered by r*H(p).
+void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& child_db, const LevelRegion& parent_region,
+                       const std::vector<PixelState>& parent, const LevelRegion& child_region, float jitter,
+                       uint32_t seed, int child_level, std::vector<PixelState>& child);
+
+// Eq. 3-7 for the pixels of one parity class (one subpass), in place.
+void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y,
+                      std::vector<PixelState>& state);
+
+// Final heights E(S) + V (bilinear in E) of `out` (inside `region`), and optionally the sources.
+void referenceResolve(const DatabaseLevel& db, const LevelRegion& region, const std::vector<PixelState>& state,
+                      const LevelRegion& out, float* heights, float* source_x, float* source_y,
+                      uint8_t* source_exemplar);
+
+}  // namespace terrasynth::synth

@@ -1,0 +1,65 @@
+// The reference backend: runs the C++ reference kernels through the shared driver.
+#include "synth/reference_synthesizer.h"
+
+#include "synth/reference_kernels.h"
+#include "synth/synthesis_driver.h"
+
+namespace terrasynth::synth {
+namespace {
+
+class ReferenceSteps final : public SynthesisSteps {
+public:
+    explicit ReferenceSteps(const ExemplarDatabase& db) : db_(db) {}
+    Status init(int level, const LevelRegion& region, uint32_t seed) override {
+        referenceInit(db_.levels[level], region, seed, level, current_);
+        return Status::ok();
+    }
+    Status upsample(int level, const LevelRegion& parent, const LevelRegion& child, float jitter, uint32_t seed) override {
+        std::vector<PixelState> next;
+        referenceUpsample(db_.levels[level + 1], db_.levels[level], parent, current_, child, jitter, seed, level, next);
+        current_.swap(next);
+        return Status::ok();
+    }
+    Status correct(int level, const LevelRegion& region, int px, int py) override {
+        referenceCorrect(db_.levels[level], region, px, py, current_);
+        return Status::ok();
+    }
+    Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
+                   bool want_sources) override {
+        referenceResolve(db_.levels[level], region, current_, out, output.heights.heights.data(),
+                         want_sources ? output.source_x.data() : nullptr, want_sources ? output.source_y.data() : nullptr,
+                         want_sources ? output.source_exemplar.data() : nullptr);
+        return Status::ok();
+    }
+
+private:
+    const ExemplarDatabase& db_;
+    std::vector<PixelState> current_;
+};
+
+class ReferenceSynthesizer final : public Synthesizer {
+public:
+    explicit ReferenceSynthesizer(std::shared_ptr<const ExemplarDatabase> db) : Synthesizer(std::move(db)) {}
+    Result<SynthesisOutput> synthesize(const PixelWindow& window, const SynthesisParams& params, int output_level,
+                                       bool want_sources) override {
+        ReferenceSteps steps(*db_);
+        size_t peak = 0;
+        auto out = runSynthesis(*db_, window, params, output_level, want_sources, steps, &peak);
+        if (out) bytes_per_pixel_ = static_cast<double>(peak * sizeof(PixelState)) / (window.width * window.height) +
+                                    (want_sources ? 13.0 : 4.0);
+        return out;
+    }
+    std::string deviceName() const override { return "reference C++"; }
+    double lastBytesPerPixel() const override { return bytes_per_pixel_; }
+
+private:
+    double bytes_per_pixel_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<Synthesizer> createReferenceSynthesizer(std::shared_ptr<const ExemplarDatabase> db) {
+    return std::make_unique<ReferenceSynthesizer>(std::move(db));
+}
+
+}  // namespace terrasynth::synth

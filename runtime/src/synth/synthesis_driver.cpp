@@ -1,0 +1,72 @@
+#include "synth/synthesis_driver.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace terrasynth::synth {
+
+int coarsestLevel(const ExemplarDatabase& db, const SynthesisParams& params) {
+    return params.coarsest_level < 0 ? db.levelCount() - 1 : params.coarsest_level;
+}
+
+Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, const SynthesisParams& params,
+                       int output_level) {
+    if (db.levels.empty()) return Status::error("database has no levels");
+    if (!(params.jitter >= 0.0f && params.jitter <= 1.0f)) return Status::error("jitter must be in [0, 1]");
+    if (params.correction_passes < 0 || params.correction_passes > 4)
+        return Status::error("correction_passes must be 0..4");
+    const int coarsest = coarsestLevel(db, params);
+    if (coarsest < 0 || coarsest >= db.levelCount())
+        return Status::error("coarsest_level must be -1 or 0.." + std::to_string(db.levelCount() - 1));
+    if (output_level < 0 || output_level > coarsest)
+        return Status::error("output level must be 0.." + std::to_string(coarsest));
+    if (window.width < 1 || window.height < 1 || window.width > 16384 || window.height > 16384)
+        return Status::error("window size must be 1..16384 per side, got " + std::to_string(window.width) + "x" +
+                             std::to_string(window.height));
+    if (std::llabs(window.x) > kMaxGlobalCoordinate || std::llabs(window.y) > kMaxGlobalCoordinate)
+        return Status::error("window origin beyond +-2^29 pixels");
+    return Status::ok();
+}
+
+Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWindow& window,
+                                     const SynthesisParams& params, int output_level, bool want_sources,
+                                     SynthesisSteps& steps, size_t* peak_state_pixels) {
+    Status valid = validateRequest(db, window, params, output_level);
+    if (!valid) return valid;
+    const int coarsest = coarsestLevel(db, params);
+    const SynthesisPlan plan = planSynthesis(window, output_level, coarsest, params.correction_passes);
+    size_t peak = 0;
+    auto correctLevel = [&](int level) -> Status {
+        for (int pass = 0; pass < params.correction_passes; ++pass)
+            for (const auto& parity : kSubpassParity) {
+                Status s = steps.correct(level, plan.regions[level], parity[0], parity[1]);
+                if (!s) return s;
+            }
+        return Status::ok();
+    };
+    Status s = steps.init(coarsest, plan.regions[coarsest], params.seed);
+    if (!s) return s;
+    for (int level = coarsest; level >= output_level; --level) {
+        if (level < coarsest) {
+            s = steps.upsample(level, plan.regions[level + 1], plan.regions[level], params.jitter, params.seed);
+            if (!s) return s;
+            peak = std::max(peak, plan.regions[level].pixels() + plan.regions[level + 1].pixels());
+        }
+        s = correctLevel(level);
+        if (!s) return s;
+    }
+    SynthesisOutput output;
+    const double spacing = db.meters_per_pixel * std::ldexp(1.0, output_level);
+    output.heights = Heightfield(window.width, window.height, spacing);
+    if (want_sources) {
+        output.source_x.resize(output.heights.size());
+        output.source_y.resize(output.heights.size());
+        output.source_exemplar.resize(output.heights.size());
+    }
+    s = steps.resolve(output_level, plan.regions[output_level], plan.output, output, want_sources);
+    if (!s) return s;
+    if (peak_state_pixels) *peak_state_pixels = std::max(peak, plan.regions[coarsest].pixels());
+    return output;
+}
+
+}  // namespace terrasynth::synth

@@ -1,0 +1,32 @@
+// Private: the level loop of pyramid synthesis (paper s4), shared by the reference and OpenCL
+// backends, which only differ in how they execute each step.
+#pragma once
+
+#include "synth/synthesis_plan.h"
+#include "terrasynth/synthesizer.h"
+
+namespace terrasynth::synth {
+
+class SynthesisSteps {
+public:
+    virtual ~SynthesisSteps() = default;
+    virtual Status init(int level, const LevelRegion& region, uint32_t seed) = 0;
+    // Upsample + jitter from level+1 (the previous step's state) into `child` at `level`.
+    virtual Status upsample(int level, const LevelRegion& parent, const LevelRegion& child, float jitter,
+                            uint32_t seed) = 0;
+    virtual Status correct(int level, const LevelRegion& region, int parity_x, int parity_y) = 0;
+    virtual Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
+                           bool want_sources) = 0;
+};
+
+// Validates the request and runs init -> (correct, upsample)* -> correct -> resolve.
+Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWindow& window,
+                                     const SynthesisParams& params, int output_level, bool want_sources,
+                                     SynthesisSteps& steps, size_t* peak_state_pixels = nullptr);
+
+// Checks parameters and window against the database; the message names the parameter.
+Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, const SynthesisParams& params,
+                       int output_level);
+int coarsestLevel(const ExemplarDatabase& db, const SynthesisParams& params);
+
+}  // namespace terrasynth::synth

@@ -1,0 +1,43 @@
+// Private: which part of every pyramid level must be synthesized for an output window.
+//
+// Correction reads neighbours up to 2 pixels away (eq. 3-6), so each subpass spoils a 2-pixel ring
+// at the border of what was computed; upsampling reads the parent pixel floor(p/2). Working from the
+// output window up to the coarsest level, each level's region is its children's parents plus
+// 2 * 4 * passes pixels. Everything is addressed in global pixel coordinates and all randomness is a
+// hash of global coordinates, so the output window is exactly what a larger computation would give.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "terrasynth/synthesizer.h"
+
+namespace terrasynth::synth {
+
+struct LevelRegion {
+    int x = 0, y = 0;          // global pixel of the region's north-west corner at this level
+    int width = 0, height = 0;
+    size_t pixels() const { return static_cast<size_t>(width) * height; }
+};
+
+struct SynthesisPlan {
+    int output_level = 0;
+    int coarsest_level = 0;
+    int passes = 2;
+    std::vector<LevelRegion> regions;  // indexed by level; valid for output_level..coarsest_level
+    LevelRegion output;                // the requested window at output_level
+};
+
+// Reach of one correction subpass in pixels (eq. 6 reads S at p + (2*dx, dy)).
+constexpr int kSubpassReach = 2;
+// Subpass parities in order (Lefebvre & Hoppe 2005 use 2x2 subpasses).
+constexpr int kSubpassParity[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+// Global coordinates must stay well inside int32 at every level.
+constexpr int64_t kMaxGlobalCoordinate = int64_t(1) << 29;
+
+SynthesisPlan planSynthesis(const PixelWindow& window, int output_level, int coarsest_level, int passes);
+
+// Floor division for negative global coordinates.
+inline int floorDiv2(int v) { return v >> 1; }  // arithmetic shift = floor for two's complement
+
+}  // namespace terrasynth::synth

@@ -1,0 +1,161 @@
+// Synthesis core (paper s4) through the OpenCL backend on PoCL, against the C++ reference, and the
+// windowed-determinism contract of terrasynth/synthesizer.h.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "terrasynth/synthesizer.h"
+#include "test_support.h"
+
+using namespace terrasynth;
+
+namespace {
+
+std::unique_ptr<Synthesizer> makeSynthesizer(SynthesisBackend backend) {
+    SynthesizerOptions options;
+    options.backend = backend;
+    auto s = Synthesizer::create(test::defaultDatabase(), options);
+    EXPECT_TRUE(s) << s.message();
+    return s ? std::move(s.value()) : nullptr;
+}
+
+Synthesizer& openCl() {
+    static std::unique_ptr<Synthesizer> s = makeSynthesizer(SynthesisBackend::OpenCL);
+    return *s;
+}
+Synthesizer& reference() {
+    static std::unique_ptr<Synthesizer> s = makeSynthesizer(SynthesisBackend::Reference);
+    return *s;
+}
+
+SynthesisOutput run(Synthesizer& s, PixelWindow w, uint32_t seed = 7, int level = 0, bool sources = false,
+                    int passes = 2) {
+    SynthesisParams p;
+    p.seed = seed;
+    p.correction_passes = passes;
+    auto out = s.synthesize(w, p, level, sources);
+    EXPECT_TRUE(out) << out.message();
+    return out ? std::move(out.value()) : SynthesisOutput{};
+}
+
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+}  // namespace
+
+TEST(Synthesis, SameSeedSameBitsDifferentSeedDifferentTerrain) {
+    const PixelWindow w{0, 0, 256, 256};
+    const auto a = run(openCl(), w, 11), b = run(openCl(), w, 11), c = run(openCl(), w, 12);
+    EXPECT_TRUE(sameBits(a.heights.heights, b.heights.heights));
+    size_t differing = 0;
+    for (size_t i = 0; i < a.heights.size(); ++i) differing += a.heights.heights[i] != c.heights.heights[i];
+    EXPECT_GT(differing, a.heights.size() / 2);
+}
+
+TEST(Synthesis, AdjacentWindowsEqualHalvesOfTheWholeWindow) {
+    const auto whole = run(openCl(), {0, 0, 512, 256});
+    const auto left = run(openCl(), {0, 0, 256, 256});
+    const auto right = run(openCl(), {256, 0, 256, 256});
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) {
+            ASSERT_EQ(left.heights.at(x, y), whole.heights.at(x, y)) << x << "," << y;
+            ASSERT_EQ(right.heights.at(x, y), whole.heights.at(x + 256, y)) << x + 256 << "," << y;
+        }
+}
+
+TEST(Synthesis, AnyWindowIncludingNegativeCoordinatesMatchesTheWhole) {
+    const auto whole = run(openCl(), {-300, -170, 400, 300}, 3, 0, true);
+    const auto part = run(openCl(), {-123, -77, 97, 131}, 3, 0, true);
+    for (int y = 0; y < part.heights.height; ++y)
+        for (int x = 0; x < part.heights.width; ++x) {
+            const int wx = x + 177, wy = y + 93;
+            ASSERT_EQ(part.heights.at(x, y), whole.heights.at(wx, wy));
+            ASSERT_EQ(part.source_exemplar[y * 97 + x], whole.source_exemplar[wy * 400 + wx]);
+        }
+}
+
+TEST(Synthesis, CoarseOutputLevelsAreWindowedToo) {
+    const auto whole = run(openCl(), {-64, 0, 128, 64}, 5, 3);
+    const auto part = run(openCl(), {0, 0, 64, 64}, 5, 3);
+    EXPECT_NEAR(whole.heights.meters_per_pixel_x, test::defaultDatabase()->meters_per_pixel * 8, 1e-9);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) ASSERT_EQ(part.heights.at(x, y), whole.heights.at(x + 64, y));
+}
+
+TEST(SynthesisDifferential, OpenClMatchesReferenceWithoutCorrection) {
+    // Init + upsample/jitter + resolve only. Tolerances: coordinates within 1e-3 pixel (a few float
+    // ulps at atlas coordinates of ~1000) and heights
+    // within 1 cm; the kernel compiler may still fuse a multiply-add the C++ side rounds twice.
+    const PixelWindow w{-40, 25, 160, 120};
+    const auto cl = run(openCl(), w, 9, 0, true, 0), ref = run(reference(), w, 9, 0, true, 0);
+    float worst_coordinate = 0.0f, worst_height = 0.0f;
+    for (size_t i = 0; i < cl.heights.size(); ++i) {
+        worst_coordinate = std::max({worst_coordinate, std::fabs(cl.source_x[i] - ref.source_x[i]),
+                                     std::fabs(cl.source_y[i] - ref.source_y[i])});
+        worst_height = std::max(worst_height, std::fabs(cl.heights.heights[i] - ref.heights.heights[i]));
+    }
+    std::printf("worst coordinate difference %g px, worst height difference %g m\n", worst_coordinate, worst_height);
+    EXPECT_LE(worst_coordinate, 1e-3f);
+    EXPECT_LE(worst_height, 1e-2f);
+    EXPECT_EQ(cl.source_exemplar, ref.source_exemplar);
+}
+
+TEST(SynthesisDifferential, OpenClMatchesReferenceWithCorrection) {
+    // Tolerance: identical float operations in identical order (FP_CONTRACT OFF on both sides);
+    // we allow 0.1% of pixels to differ by more than 1 mm in case a driver rounds a builtin
+    // differently and flips an argmin, which then changes a small patch.
+    const PixelWindow w{100, -50, 192, 160};
+    const auto cl = run(openCl(), w, 21, 0, true), ref = run(reference(), w, 21, 0, true);
+    size_t off = 0;
+    for (size_t i = 0; i < cl.heights.size(); ++i) off += std::fabs(cl.heights.heights[i] - ref.heights.heights[i]) > 1e-3f;
+    std::printf("pixels differing by more than 1 mm: %zu of %zu\n", off, cl.heights.size());
+    EXPECT_LE(off, cl.heights.size() / 1000);
+}
+
+TEST(Synthesis, HeightsAreFiniteAndWithinTheExemplarsRange) {
+    const auto out = run(openCl(), {0, 0, 512, 512}, 4, 0, true);
+    float lo = 1e9f, hi = -1e9f;
+    for (float h : out.heights.heights) {
+        ASSERT_TRUE(std::isfinite(h));
+        lo = std::min(lo, h), hi = std::max(hi, h);
+    }
+    std::printf("synthesized 512^2 range %.1f .. %.1f m\n", lo, hi);
+    // Offsets V can move exemplar terrain up or down, but not to absurd altitudes.
+    EXPECT_GT(lo, -3000.0f);
+    EXPECT_LT(hi, 12000.0f);
+    EXPECT_GT(hi - lo, 300.0f);  // a real relief, not a flat plate
+    // Every source coordinate lies inside its exemplar.
+    const DatabaseLevel& l0 = test::defaultDatabase()->levels[0];
+    for (size_t i = 0; i < out.source_x.size(); ++i) {
+        const AtlasRect& r = l0.rects[out.source_exemplar[i]];
+        ASSERT_GE(out.source_x[i], 0.0f);
+        ASSERT_LE(out.source_x[i], r.width - 1.0f);
+        ASSERT_GE(out.source_y[i], 0.0f);
+        ASSERT_LE(out.source_y[i], r.height - 1.0f);
+    }
+}
+
+TEST(Synthesis, RejectsAbsurdRequestsWithClearErrors) {
+    SynthesisParams p;
+    auto huge = openCl().synthesize({0, 0, 100000, 10}, p, 0, false);
+    ASSERT_FALSE(huge);
+    EXPECT_NE(huge.message().find("window size"), std::string::npos);
+    p.jitter = 5.0f;
+    auto jitter = openCl().synthesize({0, 0, 10, 10}, p, 0, false);
+    ASSERT_FALSE(jitter);
+    EXPECT_NE(jitter.message().find("jitter"), std::string::npos);
+    p.jitter = 0.4f;
+    auto level = openCl().synthesize({0, 0, 10, 10}, p, 9, false);
+    ASSERT_FALSE(level);
+    EXPECT_NE(level.message().find("output level"), std::string::npos);
+}
+
+TEST(Synthesis, MissingOpenClDeviceIsAClearError) {
+    SynthesizerOptions options;
+    options.device = "no-such-device-xyz";
+    auto s = Synthesizer::create(test::defaultDatabase(), options);
+    ASSERT_FALSE(s);
+    EXPECT_NE(s.message().find("no device matches"), std::string::npos) << s.message();
+}
