@@ -14,23 +14,21 @@ typedef struct {
     int x, y, width, height;  // region of the global grid held by a state buffer
 } Region;
 
-float4 dequantise(float4 q, float4 offset, float4 scale) {
-    return (float4)(offset.x + scale.x * q.x, offset.y + scale.y * q.y, offset.z + scale.z * q.z,
-                    offset.w + scale.w * q.w);
-}
-
 float4 lerp4(float4 a, float4 b, float t) {
     return (float4)(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.z + (b.z - a.z) * t, a.w + (b.w - a.w) * t);
 }
 
-float4 appearance_bilinear(global const ushort4* appearance, int width, float sx, float sy, float4 offset,
-                           float4 scale) {
+// A at a real-valued atlas coordinate, in quantised units (s4: real coordinates and bilinear
+// sampling avoid snapping). Corrected coordinates are whole pixels, so one tap usually suffices.
+float4 appearance_bilinear_q(global const ushort4* appearance, int width, float sx, float sy) {
     const float fx = floor(sx), fy = floor(sy);
     const float tx = sx - fx, ty = sy - fy;
     const int i = (int)fy * width + (int)fx;
-    const float4 a00 = convert_float4(appearance[i]), a10 = convert_float4(appearance[i + 1]);
+    const float4 a00 = convert_float4(appearance[i]);
+    if (tx == 0.0f && ty == 0.0f) return a00;
+    const float4 a10 = convert_float4(appearance[i + 1]);
     const float4 a01 = convert_float4(appearance[i + width]), a11 = convert_float4(appearance[i + width + 1]);
-    return dequantise(lerp4(lerp4(a00, a10, tx), lerp4(a01, a11, tx), ty), offset, scale);
+    return lerp4(lerp4(a00, a10, tx), lerp4(a01, a11, tx), ty);
 }
 
 float4 state_at(global const float4* state, Region r, int lx, int ly) {
@@ -39,11 +37,11 @@ float4 state_at(global const float4* state, Region r, int lx, int ly) {
     return state[ly * r.width + lx];
 }
 
-// g(u, v) of eq. 5: appearance at S(u + v) - v, plus V(u + v) on mode 0.
-float4 neighbour_appearance(global const ushort4* appearance, int width, float4 s, float vx, float vy,
-                            float4 offset, float4 scale) {
-    float4 a = appearance_bilinear(appearance, width, s.x - vx, s.y - vy, offset, scale);
-    a.x = a.x + s.z;
+// g(u, v) of eq. 5 in quantised units: appearance at S(u + v) - v, plus V(u + v) on mode 0.
+float4 neighbour_appearance_q(global const ushort4* appearance, int width, float4 s, float vx, float vy,
+                              float inv_scale0) {
+    float4 a = appearance_bilinear_q(appearance, width, s.x - vx, s.y - vy);
+    a.x = a.x + s.z * inv_scale0;
     return a;
 }
 
@@ -82,30 +80,42 @@ kernel void upsample_jitter(global const float4* parent, Region parent_region, g
 
 // Eq. 3-7 for the pixels of one parity class (one of the 4 subpasses), in place: a pixel of the
 // class only reads pixels of other classes (and itself), so there are no races.
+// Costs are evaluated in quantised appearance units and weighted by scale^2 per mode, which is
+// the metric distance of eq. 7 without dequantising every tap.
 kernel void correct(global float4* state, Region region, int first_x, int first_y,
                     global const ushort4* appearance, global const uint* similar, global const uchar* exemplar,
-                    global const int4* rects, int width, float4 offset, float4 scale) {
+                    global const int4* rects, int width, float4 scale) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width || ly >= region.height) return;
     const int2 diagonals[4] = {(int2)(-1, -1), (int2)(1, -1), (int2)(-1, 1), (int2)(1, 1)};
+    const float inv_scale0 = 1.0f / scale.x;
+    const float4 weight = scale * scale;
     float4 ns[4];
     for (int k = 0; k < 4; ++k) {
         const int dx = diagonals[k].x, dy = diagonals[k].y;
-        const float4 g0 = neighbour_appearance(appearance, width, state_at(state, region, lx + dx, ly + dy), 0.0f, 0.0f, offset, scale);
-        const float4 g1 = neighbour_appearance(appearance, width, state_at(state, region, lx + 2 * dx, ly + dy), (float)dx, 0.0f, offset, scale);
-        const float4 g2 = neighbour_appearance(appearance, width, state_at(state, region, lx + dx, ly + 2 * dy), 0.0f, (float)dy, offset, scale);
+        const float4 g0 = neighbour_appearance_q(appearance, width, state_at(state, region, lx + dx, ly + dy), 0.0f, 0.0f, inv_scale0);
+        const float4 g1 = neighbour_appearance_q(appearance, width, state_at(state, region, lx + 2 * dx, ly + dy), (float)dx, 0.0f, inv_scale0);
+        const float4 g2 = neighbour_appearance_q(appearance, width, state_at(state, region, lx + dx, ly + 2 * dy), 0.0f, (float)dy, inv_scale0);
         const float third = 1.0f / 3.0f;
         ns[k] = (float4)((g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
                          (g0.w + g1.w + g2.w) * third);
     }
     float best_cost = INFINITY, best_h = 0.0f;
     int best_q = -1;
+    // Inside a coherent patch all nine S(p + D) - D name the same pixel; evaluating it once gives
+    // the same winner (ties keep the first), so repeated sources are skipped.
+    int seen[9];
+    int seen_count = 0;
     for (int ddy = -1; ddy <= 1; ++ddy) {
         for (int ddx = -1; ddx <= 1; ++ddx) {
             const float4 s = state_at(state, region, lx + ddx, ly + ddy);
             const int cx = (int)floor(s.x - (float)ddx + 0.5f);
             const int cy = (int)floor(s.y - (float)ddy + 0.5f);
             const int c = cy * width + cx;
+            bool repeated = false;
+            for (int i = 0; i < seen_count; ++i) repeated = repeated || seen[i] == c;
+            if (repeated) continue;
+            seen[seen_count++] = c;
             const int4 r = rects[exemplar[c]];
             const int qx = clamp(cx, r.x + INTERIOR_MARGIN, r.x + r.z - 1 - INTERIOR_MARGIN);
             const int qy = clamp(cy, r.y + INTERIOR_MARGIN, r.y + r.w - 1 - INTERIOR_MARGIN);
@@ -113,17 +123,19 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             for (int j = 0; j < 2; ++j) {
                 const int q = candidates[j];
                 float4 d[4];
-                for (int k = 0; k < 4; ++k) {
-                    const float4 a = dequantise(convert_float4(appearance[q + diagonals[k].x + diagonals[k].y * width]), offset, scale);
-                    d[k] = ns[k] - a;
-                }
+                for (int k = 0; k < 4; ++k) d[k] = ns[k] - convert_float4(appearance[q + diagonals[k].x + diagonals[k].y * width]);
+                // Eq. 7: the best offset h moves mode 0 only, so it is the mean mode-0 gap.
                 const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
-                float cost = 0.0f;
+                float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f, c3 = 0.0f;
                 for (int k = 0; k < 4; ++k) {
                     const float ex = d[k].x - h;
-                    cost = cost + (ex * ex + d[k].y * d[k].y + d[k].z * d[k].z + d[k].w * d[k].w);
+                    c0 = c0 + ex * ex;
+                    c1 = c1 + d[k].y * d[k].y;
+                    c2 = c2 + d[k].z * d[k].z;
+                    c3 = c3 + d[k].w * d[k].w;
                 }
-                cost = cost * (j == 0 ? 1.0f : 2.0f);
+                float cost = weight.x * c0 + weight.y * c1 + weight.z * c2 + weight.w * c3;
+                cost = cost * (j == 0 ? 1.0f : 2.0f);  // kappa favours coherent patches
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_q = q;
@@ -132,7 +144,7 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             }
         }
     }
-    state[ly * region.width + lx] = (float4)((float)(best_q % width), (float)(best_q / width), best_h, 0.0f);
+    state[ly * region.width + lx] = (float4)((float)(best_q % width), (float)(best_q / width), best_h * scale.x, 0.0f);
 }
 
 // Heights E(S) + V (bilinear in E) of the output window, and the sources when asked for.

@@ -10,6 +10,7 @@
 #include <string>
 #include <thread>
 #include <unordered_map>
+#include <vector>
 
 #include "terrasynth/project.h"
 
@@ -43,12 +44,17 @@ private:
     Terrain(Project project, std::shared_ptr<const ExemplarDatabase> db, TerrainOptions options)
         : project_(std::move(project)), db_(std::move(db)), options_(std::move(options)) {}
     Result<Synthesizer*> synthesizerForThisThread();
+    // The layer stack's change to the synthesized extent (level 0, row-major), computed once.
+    Result<const std::vector<float>*> layerEdit();
 
     Project project_;
     std::shared_ptr<const ExemplarDatabase> db_;
     TerrainOptions options_;
     std::mutex mutex_;
     std::unordered_map<std::thread::id, std::unique_ptr<Synthesizer>> synthesizers_;
+    std::mutex edit_mutex_;
+    bool edit_ready_ = false;
+    std::vector<float> edit_;
 };
 
 }  // namespace terrasynth

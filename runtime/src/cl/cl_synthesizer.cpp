@@ -170,7 +170,7 @@ private:
         const DeviceLevel& d = levels_[level];
         ArgSetter args(correct_.get(), "correct");
         args(current_.get())(toArg(region))(first_x)(first_y)(d.appearance.get())(d.similar.get())(d.exemplar.get())(
-            d.rects.get())(d.width)(d.offset)(d.scale);
+            d.rects.get())(d.width)(d.scale);
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);
     }

@@ -19,23 +19,21 @@ Vec4 fetchAppearance(const DatabaseLevel& db, int index) {
     return {static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]), static_cast<float>(a[3])};
 }
 
-Vec4 dequantise(const DatabaseLevel& db, Vec4 q) {
-    return {db.appearance_offset[0] + db.appearance_scale[0] * q.x, db.appearance_offset[1] + db.appearance_scale[1] * q.y,
-            db.appearance_offset[2] + db.appearance_scale[2] * q.z, db.appearance_offset[3] + db.appearance_scale[3] * q.w};
-}
-
 float lerp(float a, float b, float t) { return a + (b - a) * t; }
 
-// A at a real-valued atlas coordinate (s4: real coordinates and bilinear sampling avoid snapping).
-Vec4 appearanceBilinear(const DatabaseLevel& db, float sx, float sy) {
+// A at a real-valued atlas coordinate, in quantised units (s4: real coordinates and bilinear
+// sampling avoid snapping). Corrected coordinates are whole pixels, so one tap usually suffices.
+Vec4 appearanceBilinearQ(const DatabaseLevel& db, float sx, float sy) {
     const float fx = std::floor(sx), fy = std::floor(sy);
     const float tx = sx - fx, ty = sy - fy;
     const int i = static_cast<int>(fy) * db.width + static_cast<int>(fx);
-    const Vec4 a00 = fetchAppearance(db, i), a10 = fetchAppearance(db, i + 1);
+    const Vec4 a00 = fetchAppearance(db, i);
+    if (tx == 0.0f && ty == 0.0f) return a00;
+    const Vec4 a10 = fetchAppearance(db, i + 1);
     const Vec4 a01 = fetchAppearance(db, i + db.width), a11 = fetchAppearance(db, i + db.width + 1);
     const Vec4 top{lerp(a00.x, a10.x, tx), lerp(a00.y, a10.y, tx), lerp(a00.z, a10.z, tx), lerp(a00.w, a10.w, tx)};
     const Vec4 bot{lerp(a01.x, a11.x, tx), lerp(a01.y, a11.y, tx), lerp(a01.z, a11.z, tx), lerp(a01.w, a11.w, tx)};
-    return dequantise(db, {lerp(top.x, bot.x, ty), lerp(top.y, bot.y, ty), lerp(top.z, bot.z, ty), lerp(top.w, bot.w, ty)});
+    return {lerp(top.x, bot.x, ty), lerp(top.y, bot.y, ty), lerp(top.z, bot.z, ty), lerp(top.w, bot.w, ty)};
 }
 
 float heightBilinear(const DatabaseLevel& db, float sx, float sy) {
@@ -53,10 +51,10 @@ const PixelState& stateAt(const std::vector<PixelState>& state, const LevelRegio
     return state[static_cast<size_t>(ly) * r.width + lx];
 }
 
-// g(u, v) of eq. 5 with u + v = the neighbour read and v = offset.
-Vec4 neighbourAppearance(const DatabaseLevel& db, const PixelState& s, float vx, float vy) {
-    Vec4 a = appearanceBilinear(db, s.x - vx, s.y - vy);
-    a.x = a.x + s.v;
+// g(u, v) of eq. 5 in quantised units, with u + v = the neighbour read and v = offset.
+Vec4 neighbourAppearanceQ(const DatabaseLevel& db, const PixelState& s, float vx, float vy, float inv_scale0) {
+    Vec4 a = appearanceBilinearQ(db, s.x - vx, s.y - vy);
+    a.x = a.x + s.v * inv_scale0;
     return a;
 }
 
@@ -109,9 +107,14 @@ void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& chil
         }
 }
 
+// Costs are evaluated in quantised appearance units weighted by scale^2 per mode: the metric
+// distance of eq. 7 without dequantising every tap.
 void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y,
                       std::vector<PixelState>& state) {
     static const int kDiagonals[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    const float* scale = db.appearance_scale;
+    const float inv_scale0 = 1.0f / scale[0];
+    const float weight[4] = {scale[0] * scale[0], scale[1] * scale[1], scale[2] * scale[2], scale[3] * scale[3]};
     const int first_x = (parity_x - region.x) & 1, first_y = (parity_y - region.y) & 1;
     for (int ly = first_y; ly < region.height; ly += 2) {
         for (int lx = first_x; lx < region.width; lx += 2) {
@@ -119,16 +122,17 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
             Vec4 ns[4];
             for (int k = 0; k < 4; ++k) {
                 const int dx = kDiagonals[k][0], dy = kDiagonals[k][1];
-                const Vec4 g0 = neighbourAppearance(db, stateAt(state, region, lx + dx, ly + dy), 0.0f, 0.0f);
-                const Vec4 g1 = neighbourAppearance(db, stateAt(state, region, lx + 2 * dx, ly + dy), static_cast<float>(dx), 0.0f);
-                const Vec4 g2 = neighbourAppearance(db, stateAt(state, region, lx + dx, ly + 2 * dy), 0.0f, static_cast<float>(dy));
+                const Vec4 g0 = neighbourAppearanceQ(db, stateAt(state, region, lx + dx, ly + dy), 0.0f, 0.0f, inv_scale0);
+                const Vec4 g1 = neighbourAppearanceQ(db, stateAt(state, region, lx + 2 * dx, ly + dy), static_cast<float>(dx), 0.0f, inv_scale0);
+                const Vec4 g2 = neighbourAppearanceQ(db, stateAt(state, region, lx + dx, ly + 2 * dy), 0.0f, static_cast<float>(dy), inv_scale0);
                 const float third = 1.0f / 3.0f;
                 ns[k] = {(g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
                          (g0.w + g1.w + g2.w) * third};
             }
             float best_cost = INFINITY, best_h = 0.0f;
             int best_q = -1;
-            // Candidates (eq. 3): C_j(S(p + D) - D) for the 3x3 neighbours D and j = 1, 2.
+            // Candidates (eq. 3): C_j(S(p + D) - D) for the 3x3 neighbours D and j = 1, 2. (The kernel
+            // skips sources already evaluated; with ties keeping the first, the winner is the same.)
             for (int ddy = -1; ddy <= 1; ++ddy) {
                 for (int ddx = -1; ddx <= 1; ++ddx) {
                     const PixelState& s = stateAt(state, region, lx + ddx, ly + ddy);
@@ -143,16 +147,20 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                         const int q = candidates[j];
                         Vec4 d[4];
                         for (int k = 0; k < 4; ++k) {
-                            const Vec4 a = dequantise(db, fetchAppearance(db, q + kDiagonals[k][0] + kDiagonals[k][1] * db.width));
+                            const Vec4 a = fetchAppearance(db, q + kDiagonals[k][0] + kDiagonals[k][1] * db.width);
                             d[k] = {ns[k].x - a.x, ns[k].y - a.y, ns[k].z - a.z, ns[k].w - a.w};
                         }
                         // Eq. 7: the best offset h moves mode 0 only, so it is the mean mode-0 gap.
                         const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
-                        float cost = 0.0f;
+                        float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f, c3 = 0.0f;
                         for (int k = 0; k < 4; ++k) {
                             const float ex = d[k].x - h;
-                            cost = cost + (ex * ex + d[k].y * d[k].y + d[k].z * d[k].z + d[k].w * d[k].w);
+                            c0 = c0 + ex * ex;
+                            c1 = c1 + d[k].y * d[k].y;
+                            c2 = c2 + d[k].z * d[k].z;
+                            c3 = c3 + d[k].w * d[k].w;
                         }
+                        float cost = weight[0] * c0 + weight[1] * c1 + weight[2] * c2 + weight[3] * c3;
                         cost = cost * (j == 0 ? 1.0f : 2.0f);  // kappa favours coherent patches
                         if (cost < best_cost) {
                             best_cost = cost;
@@ -165,7 +173,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
             PixelState& out = state[static_cast<size_t>(ly) * region.width + lx];
             out.x = static_cast<float>(best_q % db.width);
             out.y = static_cast<float>(best_q / db.width);
-            out.v = best_h;
+            out.v = best_h * scale[0];
         }
     }
 }

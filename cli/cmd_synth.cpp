@@ -1,0 +1,132 @@
+// terrasynth synth <project.tsyn | --db db.tsdb> -o out.png|out.f32|out.exr [--size WxH] [--origin X,Y]
+//                  [--seed N] [--level L] [--sources src.png] [--preview hillshade.png] [--backend opencl|reference]
+#include <chrono>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "command_registry.h"
+#include "terrasynth/heightfield_io.h"
+#include "terrasynth/terrain.h"
+
+namespace terrasynth::cli {
+namespace {
+
+struct SynthArgs {
+    std::string project, database, output, sources, preview, size, origin, backend = "opencl";
+    int64_t seed = -1;
+    int level = 0;
+};
+
+bool parsePair(const std::string& text, char separator, int64_t* a, int64_t* b) {
+    const size_t at = text.find(separator);
+    if (at == std::string::npos) return false;
+    try {
+        size_t used = 0;
+        *a = std::stoll(text.substr(0, at), &used);
+        if (used != at) return false;
+        *b = std::stoll(text.substr(at + 1), &used);
+        return used == text.size() - at - 1;
+    } catch (...) {
+        return false;
+    }
+}
+
+// Sources map (issue: "R,G = exemplar x,y; B = exemplar id") as a 16-bit RGB PNG, with a sidecar
+// naming the exemplars so materials can be transferred from them.
+Status writeSourcesMap(const std::string& path, const SynthesisOutput& out, const ExemplarDatabase& db, int level) {
+    const Heightfield& h = out.heights;
+    std::vector<uint16_t> rgb(h.size() * 3);
+    for (size_t i = 0; i < h.size(); ++i) {
+        rgb[3 * i] = static_cast<uint16_t>(std::lround(std::clamp(out.source_x[i], 0.0f, 65535.0f)));
+        rgb[3 * i + 1] = static_cast<uint16_t>(std::lround(std::clamp(out.source_y[i], 0.0f, 65535.0f)));
+        rgb[3 * i + 2] = out.source_exemplar[i];
+    }
+    nlohmann::json side = {{"file", path.substr(path.find_last_of('/') + 1)},
+                           {"channels", "R = exemplar x, G = exemplar y (pixels of the exemplar resampled to the "
+                                        "database spacing, at this level), B = exemplar index"},
+                           {"level", level},
+                           {"exemplar_meters_per_pixel", db.meters_per_pixel * std::ldexp(1.0, level)}};
+    for (size_t e = 0; e < db.exemplars.size(); ++e)
+        side["exemplars"].push_back({{"index", e}, {"name", db.exemplars[e].name}, {"path", db.exemplars[e].path},
+                                     {"type", db.type_names[db.exemplar_type[e]]}});
+    const std::string sidecar = path.substr(0, path.find_last_of('.')) + ".json";
+    Status s = writeFileAtomically(sidecar, side.dump(1) + "\n");
+    if (!s) return s;
+    return writePng16(path, h.width, h.height, 3, rgb);
+}
+
+void runSynth(const SynthArgs& args) {
+    Project project;
+    if (!args.project.empty()) {
+        auto loaded = loadProject(args.project);
+        if (!loaded) return fail("synth", loaded.message());
+        project = std::move(loaded.value());
+    } else if (!args.database.empty()) {
+        project.database = args.database;
+    } else {
+        return fail("synth", "give a project file or --db database.tsdb");
+    }
+    if (!args.size.empty()) {
+        int64_t w = 0, h = 0;
+        if (!parsePair(args.size, 'x', &w, &h) || w < 1 || h < 1 || w > 16384 || h > 16384)
+            return fail("synth", "--size must be WxH with sides 1..16384, got \"" + args.size + "\"");
+        project.width = static_cast<int>(w), project.height = static_cast<int>(h);
+    }
+    if (!args.origin.empty() && !parsePair(args.origin, ',', &project.origin_x, &project.origin_y))
+        return fail("synth", "--origin must be X,Y, got \"" + args.origin + "\"");
+    if (args.seed >= 0) project.synthesis.seed = static_cast<uint32_t>(args.seed);
+    TerrainOptions options;
+    if (args.backend == "reference") options.synthesizer.backend = SynthesisBackend::Reference;
+    else if (args.backend != "opencl") return fail("synth", "--backend must be opencl or reference");
+    const auto start = std::chrono::steady_clock::now();
+    auto terrain = Terrain::fromProject(project, options);
+    if (!terrain) return fail("synth", terrain.message());
+    const auto ready = std::chrono::steady_clock::now();
+    PixelWindow window = terrain.value()->extent();
+    if (args.level > 0) {  // the extent at a coarser level covers the same ground
+        window.x >>= args.level, window.y >>= args.level;
+        window.width = std::max(1, window.width >> args.level), window.height = std::max(1, window.height >> args.level);
+    }
+    auto out = terrain.value()->synthesize(window, args.level, !args.sources.empty());
+    if (!out) return fail("synth", out.message());
+    const auto done = std::chrono::steady_clock::now();
+    Status s = writeHeightfield(args.output, out->heights);
+    if (!s) return fail("synth", s.message());
+    if (!args.sources.empty()) {
+        s = writeSourcesMap(args.sources, out.value(), terrain.value()->database(), args.level);
+        if (!s) return fail("synth", s.message());
+    }
+    if (!args.preview.empty()) {
+        s = writeHillshadePng(args.preview, out->heights);
+        if (!s) return fail("synth", s.message());
+    }
+    const HeightRange range = heightRange(out->heights);
+    std::printf("wrote %s: %dx%d at %.2f m/pixel, heights %.1f..%.1f m, seed %u\n", args.output.c_str(),
+                out->heights.width, out->heights.height, out->heights.meters_per_pixel_x, range.min, range.max,
+                project.synthesis.seed);
+    std::printf("database + device ready in %.2f s, synthesis %.1f ms\n",
+                std::chrono::duration<double>(ready - start).count(),
+                std::chrono::duration<double, std::milli>(done - ready).count());
+}
+
+void addSynthCommand(CLI::App& app) {
+    auto args = std::make_shared<SynthArgs>();
+    auto* cmd = app.add_subcommand("synth", "Synthesize a terrain (paper s4) and write it as a heightmap");
+    cmd->add_option("project", args->project, "Project file (.tsyn)");
+    cmd->add_option("--db", args->database, "Database file (.tsdb) instead of a project");
+    cmd->add_option("-o,--output", args->output, "Heightmap to write: .png (16-bit + sidecar), .f32, .exr")->required();
+    cmd->add_option("--size", args->size, "WxH in pixels (default: the project's, 1024x1024)");
+    cmd->add_option("--origin", args->origin, "X,Y global pixel of the north-west corner (default 0,0)");
+    cmd->add_option("--seed", args->seed, "Random seed (default: the project's)");
+    cmd->add_option("--level", args->level, "Pyramid level to output (0 = full resolution)")->check(CLI::Range(0, 12));
+    cmd->add_option("--sources", args->sources, "Write the exemplar coordinate map (16-bit RGB PNG)");
+    cmd->add_option("--preview", args->preview, "Write a hillshade preview PNG");
+    cmd->add_option("--backend", args->backend, "opencl (default) or reference (plain C++)");
+    cmd->callback([args] { runSynth(*args); });
+}
+
+const CommandRegistration kRegistration{"synth", 20, addSynthCommand};
+
+}  // namespace
+}  // namespace terrasynth::cli

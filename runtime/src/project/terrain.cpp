@@ -1,0 +1,102 @@
+// Terrain: a project ready for height queries. Synthesis is a pure function of the global pixel
+// (windowed), and the project's layer stack (Bradbury et al. 2014) acts inside the project's extent
+// as a cached height *difference*: window = synthesis(window) + edit(window), where the edit is zero
+// outside the extent and box-averaged for coarser levels, so tiles stay seamless at every level.
+#include "terrasynth/terrain.h"
+
+#include <cmath>
+
+#include "terrasynth/layers.h"
+
+namespace terrasynth {
+
+Result<std::shared_ptr<Terrain>> Terrain::open(const std::string& project_path, const TerrainOptions& options) {
+    auto project = loadProject(project_path);
+    if (!project) return project.status();
+    return fromProject(std::move(project.value()), options);
+}
+
+Result<std::shared_ptr<Terrain>> Terrain::fromProject(Project project, const TerrainOptions& options) {
+    if (!project.layers.empty()) {
+        const std::string dir = project.path.find('/') == std::string::npos
+                                    ? std::string(".")
+                                    : project.path.substr(0, project.path.find_last_of('/'));
+        auto stack = parseLayerStack(project.layers, dir);
+        if (!stack) return stack.status().withContext(project.path);
+    }
+    auto db = openProjectDatabase(project, options.database);
+    if (!db) return db.status();
+    std::shared_ptr<Terrain> terrain(new Terrain(std::move(project), db.value(), options));
+    // Fail early (missing OpenCL device, kernel build) rather than on the first tile.
+    auto synthesizer = terrain->synthesizerForThisThread();
+    if (!synthesizer) return synthesizer.status();
+    return terrain;
+}
+
+double Terrain::metersPerPixel(int level) const { return db_->meters_per_pixel * std::ldexp(1.0, level); }
+
+Result<Synthesizer*> Terrain::synthesizerForThisThread() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& slot = synthesizers_[std::this_thread::get_id()];
+    if (!slot) {
+        auto created = Synthesizer::create(db_, options_.synthesizer);
+        if (!created) return created.status();
+        slot = std::move(created.value());
+    }
+    return slot.get();
+}
+
+Result<const std::vector<float>*> Terrain::layerEdit() {
+    std::lock_guard<std::mutex> lock(edit_mutex_);
+    if (edit_ready_) return &edit_;
+    const std::string dir = project_.path.find('/') == std::string::npos
+                                ? std::string(".")
+                                : project_.path.substr(0, project_.path.find_last_of('/'));
+    auto stack = parseLayerStack(project_.layers, dir);
+    if (!stack) return stack.status().withContext(project_.path);
+    auto synthesizer = synthesizerForThisThread();
+    if (!synthesizer) return synthesizer.status();
+    auto base = synthesizer.value()->synthesize(extent(), project_.synthesis, 0, false);
+    if (!base) return base.status();
+    auto layered = applyLayerStack(stack.value(), base->heights);
+    if (!layered) return layered.status().withContext(project_.path);
+    if (layered->width != base->heights.width || layered->height != base->heights.height)
+        return Status::error(project_.path + ": layer stack changed the terrain size");
+    edit_.resize(base->heights.size());
+    for (size_t i = 0; i < edit_.size(); ++i) edit_[i] = layered->heights[i] - base->heights.heights[i];
+    edit_ready_ = true;
+    return &edit_;
+}
+
+Result<SynthesisOutput> Terrain::synthesize(const PixelWindow& window, int level, bool want_sources) {
+    auto synthesizer = synthesizerForThisThread();
+    if (!synthesizer) return synthesizer.status();
+    auto out = synthesizer.value()->synthesize(window, project_.synthesis, level, want_sources);
+    if (!out || project_.layers.empty()) return out;
+    auto edit = layerEdit();
+    if (!edit) return edit.status();
+    // Add the edit, box-averaged over the 2^level x 2^level block of extent pixels of each sample.
+    const int64_t block = int64_t(1) << level;
+    const PixelWindow e = extent();
+    Heightfield& h = out->heights;
+    for (int y = 0; y < h.height; ++y) {
+        for (int x = 0; x < h.width; ++x) {
+            const int64_t gx0 = (window.x + x) * block - e.x, gy0 = (window.y + y) * block - e.y;
+            if (gx0 + block <= 0 || gy0 + block <= 0 || gx0 >= e.width || gy0 >= e.height) continue;
+            double sum = 0.0;
+            for (int64_t by = std::max<int64_t>(0, gy0); by < std::min<int64_t>(e.height, gy0 + block); ++by)
+                for (int64_t bx = std::max<int64_t>(0, gx0); bx < std::min<int64_t>(e.width, gx0 + block); ++bx)
+                    sum += (*edit.value())[static_cast<size_t>(by) * e.width + bx];
+            h.at(x, y) += static_cast<float>(sum / static_cast<double>(block * block));
+        }
+    }
+    return out;
+}
+
+Result<Heightfield> Terrain::heights(const PixelWindow& window, int level) {
+    auto out = synthesize(window, level, false);
+    if (!out) return out.status();
+    return std::move(out->heights);
+}
+
+}  // namespace terrasynth
