@@ -14,16 +14,21 @@ typedef struct {
     int x, y, width, height;  // region of the global grid held by a state buffer
 } Region;
 
-float4 lerp4(float4 a, float4 b, float t) {
+// Atlas coordinates are never negative, so truncation is floor; plain operators instead of the
+// floor/clamp builtins keep PoCL's work-item loops free of calls, which it cannot vectorise.
+TS_INLINE int floor_nonneg(float v) { return (int)v; }
+TS_INLINE int clamp_int(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
+
+TS_INLINE float4 lerp4(float4 a, float4 b, float t) {
     return (float4)(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.z + (b.z - a.z) * t, a.w + (b.w - a.w) * t);
 }
 
 // A at a real-valued atlas coordinate, in quantised units (s4: real coordinates and bilinear
 // sampling avoid snapping). Corrected coordinates are whole pixels, so one tap usually suffices.
-float4 appearance_bilinear_q(global const ushort4* appearance, int width, float sx, float sy) {
-    const float fx = floor(sx), fy = floor(sy);
-    const float tx = sx - fx, ty = sy - fy;
-    const int i = (int)fy * width + (int)fx;
+TS_INLINE float4 appearance_bilinear_q(global const ushort4* appearance, int width, float sx, float sy) {
+    const int ix = floor_nonneg(sx), iy = floor_nonneg(sy);
+    const float tx = sx - (float)ix, ty = sy - (float)iy;
+    const int i = iy * width + ix;
     const float4 a00 = convert_float4(appearance[i]);
     if (tx == 0.0f && ty == 0.0f) return a00;
     const float4 a10 = convert_float4(appearance[i + 1]);
@@ -31,21 +36,21 @@ float4 appearance_bilinear_q(global const ushort4* appearance, int width, float 
     return lerp4(lerp4(a00, a10, tx), lerp4(a01, a11, tx), ty);
 }
 
-float4 state_at(global const float4* state, Region r, int lx, int ly) {
-    lx = clamp(lx, 0, r.width - 1);
-    ly = clamp(ly, 0, r.height - 1);
+TS_INLINE float4 state_at(global const float4* state, Region r, int lx, int ly) {
+    lx = clamp_int(lx, 0, r.width - 1);
+    ly = clamp_int(ly, 0, r.height - 1);
     return state[ly * r.width + lx];
 }
 
 // g(u, v) of eq. 5 in quantised units: appearance at S(u + v) - v, plus V(u + v) on mode 0.
-float4 neighbour_appearance_q(global const ushort4* appearance, int width, float4 s, float vx, float vy,
+TS_INLINE float4 neighbour_appearance_q(global const ushort4* appearance, int width, float4 s, float vx, float vy,
                               float inv_scale0) {
     float4 a = appearance_bilinear_q(appearance, width, s.x - vx, s.y - vy);
     a.x = a.x + s.z * inv_scale0;
     return a;
 }
 
-int floor_div2(int v) { return v >> 1; }
+TS_INLINE int floor_div2(int v) { return v >> 1; }
 
 // Coarsest level: random interior coordinates from the per-type seed lists, V = 0.
 kernel void init_level(global float4* state, Region region, global const uint* seeds, uint seed_count,
@@ -109,16 +114,16 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
     for (int ddy = -1; ddy <= 1; ++ddy) {
         for (int ddx = -1; ddx <= 1; ++ddx) {
             const float4 s = state_at(state, region, lx + ddx, ly + ddy);
-            const int cx = (int)floor(s.x - (float)ddx + 0.5f);
-            const int cy = (int)floor(s.y - (float)ddy + 0.5f);
+            const int cx = floor_nonneg(s.x - (float)ddx + 0.5f);
+            const int cy = floor_nonneg(s.y - (float)ddy + 0.5f);
             const int c = cy * width + cx;
             bool repeated = false;
             for (int i = 0; i < seen_count; ++i) repeated = repeated || seen[i] == c;
             if (repeated) continue;
             seen[seen_count++] = c;
             const int4 r = rects[exemplar[c]];
-            const int qx = clamp(cx, r.x + INTERIOR_MARGIN, r.x + r.z - 1 - INTERIOR_MARGIN);
-            const int qy = clamp(cy, r.y + INTERIOR_MARGIN, r.y + r.w - 1 - INTERIOR_MARGIN);
+            const int qx = clamp_int(cx, r.x + INTERIOR_MARGIN, r.x + r.z - 1 - INTERIOR_MARGIN);
+            const int qy = clamp_int(cy, r.y + INTERIOR_MARGIN, r.y + r.w - 1 - INTERIOR_MARGIN);
             const int candidates[2] = {qy * width + qx, (int)similar[c]};
             for (int j = 0; j < 2; ++j) {
                 const int q = candidates[j];
