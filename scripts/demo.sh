@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# README command (a): install dependencies, build, and run the main job on the shipped default
+# exemplars: build the exemplar database, synthesize a 1024x1024 terrain, write heightmap, hillshade
+# and coordinate map to out/, print realism statistics against an exemplar, export a glTF.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+bash scripts/build.sh
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl_cache}"
+mkdir -p out "$POCL_CACHE_DIR"
+build/bin/terrasynth db build data/exemplars -o out/default.tsdb
+build/bin/terrasynth synth data/default.tsyn -o out/terrain.png --preview out/terrain_hillshade.png \
+  --sources out/terrain_sources.png
+build/bin/terrasynth stats out/terrain.png --vs data/exemplars/orom_rockies.png
+build/bin/terrasynth export data/default.tsyn -o out/terrain.glb --lods 3
+echo "demo: results in out/ (terrain.png + .json, terrain_hillshade.png, terrain_sources.png, terrain.glb)"

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# README command (b), and what CI runs (.ci/run): install dependencies, build, install the glTF
+# validator (npm), run the whole GoogleTest suite through ctest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+bash scripts/build.sh
+npm ci --prefix scripts --no-audit --no-fund --loglevel=error
+export POCL_CACHE_DIR="$PWD/build/pocl_cache"
+mkdir -p "$POCL_CACHE_DIR"
+ctest --test-dir build --output-on-failure -j"${JOBS:-2}" --timeout 1200
