@@ -1,0 +1,107 @@
+// `terrasynth layers <project.tsyn> [--json] [--apply base.png | --size W,H --mpp M] [-o out.png]
+//   [--hillshade hs.png]`: prints a project's layer stack (Bradbury et al. 2014; docs/layers.md) and,
+// with -o, applies it without running synthesis: to --apply's heightmap, to an imported-heightmap
+// base's own grid, or (fractal/blank base) to a --size grid.
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command_registry.h"
+#include "terrasynth/heightfield_io.h"
+#include "terrasynth/layers.h"
+
+namespace terrasynth::cli {
+namespace {
+
+const char* kCommand = "layers";
+
+struct LayersArgs {
+    std::string project, apply, output, hillshade;
+    std::vector<int> size;
+    double mpp = 0.0;
+    bool json = false;
+};
+
+std::string folderOf(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? "." : path.substr(0, slash);
+}
+
+// Reads only the "layers" key of the project, so this works on any .tsyn (or a bare JSON array).
+Result<LayerStack> readStack(const std::string& path) {
+    auto bytes = readFileBytes(path);
+    if (!bytes) return bytes.status();
+    nlohmann::json doc = nlohmann::json::parse(*bytes, nullptr, /*allow_exceptions=*/false);
+    if (doc.is_discarded()) return Status::error(path + ": not valid JSON");
+    const nlohmann::json layers = doc.is_array() ? doc : doc.value("layers", nlohmann::json::array());
+    auto stack = parseLayerStack(layers, folderOf(path));
+    if (!stack) return stack.status().withContext(path);
+    return stack;
+}
+
+Result<Heightfield> gridFor(const LayersArgs& a, const LayerStack& stack) {
+    if (!a.apply.empty()) {
+        auto ex = readExemplar(a.apply);
+        if (!ex) return ex.status();
+        return std::move(ex->field);
+    }
+    if (stack.base.source == BaseSource::Heightmap && a.size.empty()) {
+        // The imported heightmap's own grid.
+        const std::string path = stack.base.path.empty() || stack.base.path[0] == '/'
+                                     ? stack.base.path
+                                     : stack.base_dir + "/" + stack.base.path;
+        auto ex = readExemplar(path);
+        if (!ex) return Status::error("layers[0].path: " + ex.message());
+        return std::move(ex->field);
+    }
+    if (stack.base.source == BaseSource::Synthesized)
+        return Status::error("the stack's base is the synthesized terrain: give it with --apply base.png (or run "
+                             "`terrasynth synth`)");
+    if (a.size.size() != 2 || !(a.mpp > 0.0))
+        return Status::error("a " + std::string(stack.base.source == BaseSource::Fractal ? "fractal" : "blank") +
+                             " base needs the grid: --size W,H --mpp M (or --apply base.png)");
+    return Heightfield(a.size[0], a.size[1], a.mpp);
+}
+
+void runLayers(const LayersArgs& a) {
+    auto stack = readStack(a.project);
+    if (!stack) return fail(kCommand, stack.message());
+    if (a.json) std::printf("%s\n", layerStackToJson(*stack).dump(2).c_str());
+    else std::printf("%s", describeLayerStack(*stack).c_str());
+    if (a.output.empty() && a.hillshade.empty()) return;
+    auto grid = gridFor(a, *stack);
+    if (!grid) return fail(kCommand, grid.message());
+    auto out = applyLayerStack(*stack, *grid);
+    if (!out) return fail(kCommand, out.message());
+    if (!a.output.empty()) {
+        if (Status s = writeHeightfield(a.output, *out); !s) return fail(kCommand, s.message());
+        const HeightRange r = heightRange(*out);
+        std::printf("wrote %s: %dx%d, heights %.1f..%.1f m\n", a.output.c_str(), out->width, out->height, r.min, r.max);
+    }
+    if (!a.hillshade.empty()) {
+        if (Status s = writeHillshadePng(a.hillshade, *out); !s) return fail(kCommand, s.message());
+        std::printf("wrote %s\n", a.hillshade.c_str());
+    }
+}
+
+void addLayersCommand(CLI::App& app) {
+    auto args = std::make_shared<LayersArgs>();
+    auto* cmd = app.add_subcommand(kCommand, "Print (and optionally apply) a project's frequency-band layer stack");
+    cmd->add_option("project", args->project, "Project file (.tsyn) or a JSON array of layers")->required();
+    cmd->add_flag("--json", args->json, "Print the normalised JSON instead of the summary");
+    cmd->add_option("--apply", args->apply, "Heightmap to use as the base/grid (any format readExemplar reads)");
+    cmd->add_option("--size", args->size, "Grid W,H for a fractal or blank base")->delimiter(',')->expected(2);
+    cmd->add_option("--mpp", args->mpp, "Grid spacing in metres per pixel (with --size)");
+    cmd->add_option("-o,--output", args->output, "Write the composed heightmap (.png, .f32, .exr)");
+    cmd->add_option("--hillshade", args->hillshade, "Write a hillshade PNG of the composed terrain");
+    cmd->callback([args] { runLayers(*args); });
+}
+
+const CommandRegistration kReg{kCommand, 35, addLayersCommand};
+
+}  // namespace
+}  // namespace terrasynth::cli
