@@ -1,0 +1,205 @@
+// terrasynth_plugin/terrain_node.h: the unbounded quadtree terrain as one OSG node.
+//
+// Data model vs render model (osgEarth REX style):
+//  - CULL: picks the tiles to draw by screen-space error from the camera, starting from the root
+//    tiles (level max_level) within view_radius of the eye, so the world follows the camera without
+//    bounds. A tile is refined only once all four children are resident; until then it is drawn
+//    itself (no holes) and its missing children are wanted. Skirts hide the LOD steps (no cracks).
+//  - Worker threads (WorkerPool): each wanted tile is built by buildTile (heights -> mesh -> detached
+//    OSG node), nearest first; the queue is re-planned every frame so tiles left behind are dropped.
+//  - UPDATE: finished tiles are attached (or swapped for a rebuilt tile) under a per-frame cap on the
+//    count and on the measured main-thread time; then least-recently drawn tiles are evicted until the
+//    resident memory fits the cache budget.
+// Editing: invalidate() marks the tiles whose heights may change; they are rebuilt in the background
+// and swapped whole (new geometry, never DYNAMIC edits) only when their heights actually differ.
+//
+// Threading: OSG calls traverse() from the update and cull threads (never both at once for one
+// frame in osgViewer, but a mutex guards the shared state anyway); the other public methods are
+// thread-safe. The children are the tiles drawn in the last frame (before any frame: the last
+// preload), one consistent set of LODs for intersection visitors and writers; the node keeps the
+// class name of osg::Group so osgconv stores them as a plain group of transforms and geometries.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include <osg/Group>
+#include <osg/NodeVisitor>
+
+#include "terrasynth_plugin/height_source.h"
+#include "terrasynth_plugin/tile_builder.h"
+#include "terrasynth_plugin/tile_key.h"
+#include "terrasynth_plugin/worker_pool.h"
+
+namespace osgUtil {
+class CullVisitor;
+}
+
+namespace terrasynth::plugin {
+
+struct TerrainNodeOptions {
+    int tile_size = 256;      // quads per tile side (tile_size + 1 samples); 8..2048
+    int max_level = 5;        // level of the root tiles (coarsest); >= min_level
+    int min_level = 0;        // finest level drawn; >= 0
+    int mesh_step = 1;        // grid step in samples; divides tile_size
+    // A tile is refined while one sample spacing of it projects to more than this many pixels.
+    float pixel_error = 8.0f;
+    // Root tiles whose footprint comes within this distance (metres, horizontal) of the eye are drawn;
+    // 0 = 3 root tiles. Root tiles within 1.5x of it are loaded ahead of the camera.
+    double view_radius_m = 0.0;
+    int threads = 0;          // worker threads; 0 = hardware threads
+    // Resident tile memory budget (client-side vertex + index bytes, MiB). Tiles drawn in the last
+    // frame are never evicted, so a view needing more overshoots rather than showing holes.
+    double cache_mb = 768.0;
+    int max_merges_per_frame = 16;  // tiles attached per UPDATE at most
+    double merge_budget_ms = 2.0;   // main-thread time per UPDATE for attaching tiles
+    float skirt_extra_spacings = 2.0f;
+    bool optimize_order = false;
+    // Blend each tile towards its parent's surface before the parent takes over (no popping).
+    // Needs an even tile_size / mesh_step; costs a quarter more height samples per tile.
+    bool geomorph = true;
+};
+
+// Puts the geomorphing shader program and its default uniforms on `ss` (terrain_shader.cpp).
+void installGeomorphProgram(osg::StateSet& ss);
+
+// Checks ranges; the message names the option.
+Status validateOptions(const TerrainNodeOptions& options);
+
+struct TerrainStats {
+    size_t resident_tiles = 0;
+    size_t resident_bytes = 0;
+    size_t pending_builds = 0;    // queued or running on workers
+    size_t waiting_merge = 0;     // built, waiting for an UPDATE
+    size_t drawn_tiles = 0;       // in the last cull
+    size_t wanted_tiles = 0;      // in the last cull
+    float drawn_min_height = 0.0f, drawn_max_height = 0.0f;  // over the tiles drawn in the last cull
+    uint64_t tiles_built = 0, tiles_merged = 0, tiles_swapped = 0, rebuilds_unchanged = 0;
+    uint64_t tiles_evicted = 0, build_failures = 0, stale_builds_dropped = 0;
+    int last_merge_count = 0;
+    double last_merge_ms = 0.0;   // main-thread time of the last UPDATE's merge step
+    double max_merge_ms = 0.0;    // largest since construction (or resetMergeStats)
+    double mean_build_ms = 0.0;   // worker time per tile (heights + mesh + node)
+    double mean_heights_ms = 0.0;
+    std::string last_error;       // last failed build, "" if none
+};
+
+class TerrainNode : public osg::Group {
+public:
+    // meters_per_pixel: level-0 spacing of `source`. Options must pass validateOptions.
+    TerrainNode(HeightSource source, double meters_per_pixel, const TerrainNodeOptions& options);
+
+    void traverse(osg::NodeVisitor& nv) override;
+    // The children's bound stretched upwards by two radii: viewers put their default home position
+    // 3.5 radii south of the centre looking horizontally, which for a heightfield in an unbounded
+    // world would be inside the surrounding relief; this puts it above, looking over the terrain.
+    osg::BoundingSphere computeBound() const override;
+
+    // Builds the tiles of `level` that cover the level-0 pixel rectangle `region` on the workers,
+    // waits, makes them resident and the node's children (for osgconv, bounds and first frames;
+    // preload the root level too so the first frame has something to draw). Errors: a failed tile.
+    Status preload(const PixelWindow& region, int level);
+
+    // Marks every tile whose samples (apron included) may change when the level-0 heights inside
+    // `region` change, widened by `margin_px` level-0 pixels for filters that spread an edit.
+    // Marked tiles still drawn are rebuilt and swapped when their heights differ; others are dropped.
+    void invalidate(const PixelWindow& region, int64_t margin_px = 0);
+    void invalidateAll();
+    // Replaces the height source (e.g. after an edit); call invalidate*() for the changed area.
+    void setHeightSource(HeightSource source);
+
+    TerrainStats stats() const;
+    // Per-UPDATE merge times (ms) of the UPDATEs that attached at least one tile, oldest first
+    // (the last 4096).
+    std::vector<double> mergeTimesMs() const;
+    void resetMergeStats();
+    // True when nothing is wanted, building, or waiting to merge (the view has converged).
+    bool settled() const;
+    const TileLayout& layout() const { return layout_; }
+    const TerrainNodeOptions& options() const { return options_; }
+    // Tiles drawn by the last cull (for tests).
+    std::vector<TileKey> drawnTiles() const;
+    // The resident node of a tile, or null (for tests: a swap gives a new pointer).
+    osg::ref_ptr<osg::Node> tileNode(const TileKey& key) const;
+
+protected:
+    ~TerrainNode() override;
+
+private:
+    struct Tile {
+        osg::ref_ptr<osg::Node> node;
+        osg::BoundingBox box;
+        float min_height = 0.0f, max_height = 0.0f;
+        uint64_t hash = 0;
+        uint64_t generation = 0;
+        size_t bytes = 0;
+        unsigned last_used_frame = 0;
+        bool dirty = false;
+    };
+    struct Invalidation {
+        uint64_t generation;
+        PixelWindow region;  // level 0, margin included
+        bool everything;
+    };
+    struct Building {
+        uint64_t ticket;  // which submission owns the key (re-planning may re-submit it)
+        bool started;
+    };
+
+    // CULL
+    void cull(osgUtil::CullVisitor& cv);
+    void cullFrom(osgUtil::CullVisitor& cv, unsigned frame);  // roots around the eye, then selectTile
+    void selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile& tile);
+    void want(const TileKey& key, double priority);
+    double screenPixelsPerMeter(osgUtil::CullVisitor& cv, double distance) const;
+    // UPDATE
+    void update(unsigned frame);
+    void mergeCompleted(unsigned frame);
+    void attach(TileBuild&& build);
+    void planBuilds();
+    void evict(unsigned frame);
+    // Children = the tiles the last cull drew (what writers and intersection visitors see).
+    void syncChildren();
+    // Workers
+    void runBuild(const TileKey& key, uint64_t ticket, uint64_t generation, const HeightSource& source,
+                  const osg::Node* parent);
+    bool staleLocked(const TileKey& key, uint64_t generation) const;
+    void invalidateLocked(const Invalidation& inv);
+    bool touches(const TileKey& key, const PixelWindow& level0_region) const;
+
+    TerrainNodeOptions options_;
+    TileLayout layout_;
+    TileBuildSettings build_settings_;
+
+    mutable std::mutex mutex_;  // everything below
+    HeightSource source_;
+    std::unordered_map<TileKey, Tile, TileKeyHash> tiles_;
+    std::unordered_map<TileKey, double, TileKeyHash> wanted_;      // by the last cull
+    std::unordered_map<TileKey, Building, TileKeyHash> building_;  // queued, running or built
+    uint64_t next_ticket_ = 0;
+    std::unordered_set<TileKey, TileKeyHash> failed_;              // not retried until an edit
+    std::vector<TileBuild> completed_;
+    std::vector<Invalidation> invalidations_;
+    std::vector<std::pair<unsigned, osg::ref_ptr<osg::Node>>> released_;  // kept alive a few frames
+    std::vector<osg::ref_ptr<osg::Node>> drawn_;
+    std::vector<TileKey> drawn_keys_;
+    unsigned cull_frame_ = ~0u;
+    unsigned frame_counter_ = 0;
+    uint64_t generation_ = 0;
+    size_t resident_bytes_ = 0;
+    double merge_cost_ema_ms_ = 0.2;
+    TerrainStats stats_;
+    std::vector<double> merge_times_;
+    // Per-cull state carrying ts_lod_k, kept alive while a draw thread may still use it.
+    std::vector<std::pair<unsigned, osg::ref_ptr<osg::StateSet>>> lod_states_;
+    double build_ms_sum_ = 0.0, heights_ms_sum_ = 0.0;
+
+    std::unique_ptr<WorkerPool> pool_;  // last: destroyed (joined) first
+};
+
+}  // namespace terrasynth::plugin

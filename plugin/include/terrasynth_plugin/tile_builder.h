@@ -1,0 +1,86 @@
+// terrasynth_plugin/tile_builder.h: one quadtree tile from heights to a detached OSG subgraph.
+//
+// This is the whole per-tile job a worker thread runs (osgEarth REX style "create the tile model off
+// the draw thread, merge it later"): fetch the tile's window (plus an apron so normals are central
+// differences across tile edges), mesh it with skirts (terrasynth/mesh.h), and wrap the mesh in an
+// osg::MatrixTransform + osg::Geometry that no scene graph references yet, so building it touches no
+// shared state. The UPDATE traversal later only attaches or swaps the finished node.
+#pragma once
+
+#include <cstdint>
+
+#include <osg/BoundingBox>
+#include <osg/Node>
+#include <osg/ref_ptr>
+
+#include "terrasynth/mesh.h"
+#include "terrasynth_plugin/height_source.h"
+#include "terrasynth_plugin/tile_key.h"
+
+namespace terrasynth::plugin {
+
+struct TileBuildSettings {
+    TileLayout layout;
+    // Grid step in samples (1 = every sample). tile_size must be a multiple of it.
+    int mesh_step = 1;
+    // Skirts hang (tile height range + skirt_extra_spacings * level spacing) below the edges: deep
+    // enough to cover the gap to any coarser or finer neighbour, whose edge lies in the same relief.
+    float skirt_extra_spacings = 2.0f;
+    // Reorder for the vertex cache (meshoptimizer); costs build time, saves draw time.
+    bool optimize_order = false;
+    // Geomorphing: also read the parent level's samples under the tile (a quarter of the tile's
+    // samples) and give every vertex its height on the parent's surface. Tiles at max_level have no
+    // parent and do not morph. Needs an even tile_size / mesh_step.
+    bool geomorph = false;
+    int max_level = 0;
+};
+
+struct TileBuild {
+    TileKey key;
+    uint64_t generation = 0;  // the edit generation the heights were read at (set by the caller)
+    Status status = Status::ok();
+    // MatrixTransform (world offset of the tile's north-west corner, in double) over one Geometry
+    // whose vertices are relative to that corner, so float precision holds anywhere in an unbounded
+    // world. Bounds are already computed.
+    osg::ref_ptr<osg::Node> node;
+    osg::BoundingBox box;      // world frame, including the skirt
+    float min_height = 0.0f, max_height = 0.0f;  // of the meshed samples
+    uint64_t heights_hash = 0; // FNV-1a of the window's bits, apron included: equal hash = same tile
+    size_t bytes = 0;          // client-side vertex and index memory of the node
+    double heights_ms = 0.0, mesh_ms = 0.0, osg_ms = 0.0;
+};
+
+// The window (global pixels of key.level) a tile reads: its (tile_size + 1)^2 samples plus an apron
+// of mesh_step samples on every side.
+PixelWindow tileReadWindow(const TileKey& key, const TileBuildSettings& settings);
+
+// Builds one tile. Thread-safe if `source` is. Errors (source failure, wrong window size) come back
+// in `status` with the tile key in the message. For geomorphing, `parent_samples` (from
+// parentSamplesFromNode) saves reading the parent level from `source`; null = read it.
+TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBuildSettings& settings,
+                    const Heightfield* parent_samples = nullptr);
+
+// The parent level's samples under `child` as geomorphing reads them ((tile_size/2 + 1)^2, of which
+// those at multiples of mesh_step are set), taken from the parent tile's built node instead of the
+// height source: they are its top-surface vertex heights, bit for bit. Empty if the node is not a
+// tile node of these settings. Reads only; safe on a worker while the node is in the scene (STATIC).
+Heightfield parentSamplesFromNode(const osg::Node& parent_node, const TileKey& child, const TileBuildSettings& settings);
+
+// The detached OSG subgraph for a mesh whose vertices are relative to (origin_x, origin_y).
+// Copies the mesh into VBO-backed arrays; STATIC data variance (edits swap whole tiles).
+// With `parent_heights` (one per vertex) the geometry carries them as the vertex attribute
+// kCoarseHeightAttribute and the uniform "ts_parent_spacing" = parent_spacing for the morph shader.
+osg::ref_ptr<osg::Node> makeTileNode(const TileMesh& mesh, double origin_x, double origin_y, size_t* bytes,
+                                     const std::vector<float>* parent_heights = nullptr, double parent_spacing = 0.0);
+constexpr unsigned kCoarseHeightAttribute = 6;
+
+// Per vertex of `mesh` (vertices relative to the tile's north-west corner, `spacing` metres between
+// samples, grid step `step`, skirt `skirt_depth_m`), the height of the parent tile's mesh at the same
+// x, y. `parent` holds the parent level's samples under the tile: (tile_size/2 + 1)^2.
+std::vector<float> parentSurfaceHeights(const TileMesh& mesh, const Heightfield& parent, double spacing, int step,
+                                        float skirt_depth_m);
+
+// 64-bit FNV-1a over the float bits of the field (and its size).
+uint64_t hashHeights(const Heightfield& field);
+
+}  // namespace terrasynth::plugin

@@ -1,0 +1,114 @@
+// osgdb_terrasynth: the osgDB entry point for .tsyn projects. Everything real lives in
+// terrasynth_plugin (TerrainNode) and the runtime (Terrain); this file only maps osgDB's calling
+// convention onto them and never lets an exception or a foreign file through.
+#include <algorithm>
+#include <exception>
+#include <memory>
+#include <string>
+
+#include <osgDB/FileNameUtils>
+#include <osgDB/FileUtils>
+#include <osgDB/Registry>
+
+#include "terrasynth/project.h"
+#include "terrasynth/terrain.h"
+#include "terrasynth_plugin/plugin_options.h"
+#include "terrasynth_plugin/terrain_node.h"
+
+namespace {
+
+using namespace terrasynth;
+using namespace terrasynth::plugin;
+
+// The coarsest level whose tiles over the project extent are at most 16: a cheap, whole first view.
+int automaticPreloadLevel(const Project& p, const TerrainNodeOptions& o) {
+    for (int level = o.min_level; level < o.max_level; ++level) {
+        const int64_t span = static_cast<int64_t>(o.tile_size) << level;
+        const int64_t nx = (p.origin_x + p.width - 1) / span - p.origin_x / span + 1;
+        const int64_t ny = (p.origin_y + p.height - 1) / span - p.origin_y / span + 1;
+        if (nx * ny <= 16) return level;
+    }
+    return o.max_level;
+}
+
+class ReaderWriterTerrasynth : public osgDB::ReaderWriter {
+public:
+    ReaderWriterTerrasynth() {
+        supportsExtension("tsyn", "terrasynth project (terrain synthesis by example)");
+        supportsOption("tileSize=<n>", "quads per tile side (default 256)");
+        supportsOption("maxLevel=<n>", "level of the root tiles (default 5, clamped to the database)");
+        supportsOption("minLevel=<n>", "finest level drawn (default 0)");
+        supportsOption("meshStep=<n>", "grid step in samples (default 1)");
+        supportsOption("pixelError=<px>", "screen-space error that triggers refinement (default 8)");
+        supportsOption("viewRadius=<m>", "draw radius around the eye (default one root tile)");
+        supportsOption("threads=<n>", "worker threads (default hardware threads)");
+        supportsOption("cacheMB=<MiB>", "resident tile budget (default 768)");
+        supportsOption("mergesPerFrame=<n>", "tiles attached per frame at most (default 16)");
+        supportsOption("mergeBudgetMs=<ms>", "main-thread merge time per frame (default 2)");
+        supportsOption("skirt=<spacings>", "extra skirt depth in sample spacings (default 2)");
+        supportsOption("geomorph=<0|1>", "blend tiles towards their parent before it takes over (default 1)");
+        supportsOption("seed=<n>", "override the project's synthesis seed");
+        supportsOption("backend=<opencl|reference>", "synthesizer backend");
+        supportsOption("device=<name>", "OpenCL device substring");
+        supportsOption("preload=<0|1>", "build the project extent before returning (default 1)");
+        supportsOption("preloadLevel=<n>", "level of the preload (default automatic)");
+    }
+
+    const char* className() const override { return "terrasynth .tsyn terrain reader"; }
+
+    // osgconv and osgDB::readObjectFile ask for an object: the terrain node is one.
+    ReadResult readObject(const std::string& file, const Options* options) const override {
+        return readNode(file, options);
+    }
+
+    ReadResult readNode(const std::string& file, const Options* options) const override {
+        try {
+            return read(file, options);
+        } catch (const std::exception& e) {
+            return ReadResult(std::string("terrasynth: ") + file + ": " + e.what());
+        } catch (...) {
+            return ReadResult(std::string("terrasynth: ") + file + ": unknown error");
+        }
+    }
+
+private:
+    ReadResult read(const std::string& file, const Options* options) const {
+        if (!acceptsExtension(osgDB::getLowerCaseFileExtension(file))) return ReadResult::FILE_NOT_HANDLED;
+        const std::string path = osgDB::findDataFile(file, options);
+        if (path.empty()) return ReadResult::FILE_NOT_FOUND;
+
+        auto parsed = parsePluginOptions(options ? options->getOptionString() : std::string());
+        if (!parsed) return ReadResult(path + ": " + parsed.message());
+        PluginOptions opts = std::move(*parsed);
+
+        auto project = loadProject(path);
+        if (!project) return ReadResult(project.message());
+        if (opts.seed) project->synthesis.seed = *opts.seed;
+        if (!opts.max_level_given)
+            opts.node.max_level = std::max(opts.node.min_level,
+                                           std::min(opts.node.max_level, project->database_levels - 1));
+        TerrainOptions terrain_options;
+        terrain_options.synthesizer = opts.synthesizer;
+        auto terrain = Terrain::fromProject(*project, terrain_options);
+        if (!terrain) return ReadResult(path + ": " + terrain.message());
+        std::shared_ptr<Terrain> shared = *terrain;
+
+        HeightSource source = [shared](const PixelWindow& w, int level) { return shared->heights(w, level); };
+        osg::ref_ptr<TerrainNode> node = new TerrainNode(source, shared->metersPerPixel(0), opts.node);
+        node->setName(osgDB::getSimpleFileName(path));
+        if (opts.preload) {
+            const int level = opts.preload_level >= 0 ? opts.preload_level
+                                                      : automaticPreloadLevel(shared->project(), opts.node);
+            // Roots first (the first frame draws from them), then the level that osgconv writes.
+            for (int l : {opts.node.max_level, level}) {
+                if (Status s = node->preload(shared->extent(), l); !s) return ReadResult(path + ": " + s.message());
+                if (l == level) break;
+            }
+        }
+        return node.get();
+    }
+};
+
+}  // namespace
+
+REGISTER_OSGPLUGIN(terrasynth, ReaderWriterTerrasynth)

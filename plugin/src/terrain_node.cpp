@@ -1,0 +1,232 @@
+// TerrainNode: construction, traversal dispatch, editing hooks, preload and statistics.
+// The cull-time selection is in tile_selection.cpp, the UPDATE-time merge in tile_merge.cpp.
+#include "terrasynth_plugin/terrain_node.h"
+
+#include <algorithm>
+#include <atomic>
+#include <string>
+#include <thread>
+
+#include <osg/Material>
+#include <osgUtil/CullVisitor>
+
+namespace terrasynth::plugin {
+
+Status validateOptions(const TerrainNodeOptions& o) {
+    auto bad = [](const std::string& name, const std::string& why) { return Status::error(name + ": " + why); };
+    if (o.tile_size < 8 || o.tile_size > 2048) return bad("tileSize", "must be in [8, 2048]");
+    if (o.min_level < 0 || o.min_level > 20) return bad("minLevel", "must be in [0, 20]");
+    if (o.max_level < o.min_level || o.max_level > 20) return bad("maxLevel", "must be in [minLevel, 20]");
+    if (o.mesh_step < 1 || o.tile_size % o.mesh_step != 0) return bad("meshStep", "must divide tileSize");
+    if (!(o.pixel_error > 0.0f)) return bad("pixelError", "must be > 0");
+    if (!(o.view_radius_m >= 0.0)) return bad("viewRadius", "must be >= 0 (0 = one root tile)");
+    if (o.threads < 0 || o.threads > 256) return bad("threads", "must be in [0, 256]");
+    if (!(o.cache_mb > 0.0)) return bad("cacheMB", "must be > 0");
+    if (o.max_merges_per_frame < 1) return bad("mergesPerFrame", "must be >= 1");
+    if (!(o.merge_budget_ms > 0.0)) return bad("mergeBudgetMs", "must be > 0");
+    if (!(o.skirt_extra_spacings >= 0.0f)) return bad("skirt", "must be >= 0");
+    if (o.geomorph && (o.tile_size / o.mesh_step) % 2 != 0)
+        return bad("geomorph", "needs an even tileSize / meshStep");
+    return Status::ok();
+}
+
+TerrainNode::TerrainNode(HeightSource source, double meters_per_pixel, const TerrainNodeOptions& options)
+    : options_(options), source_(std::move(source)) {
+    const Status valid = validateOptions(options);
+    TERRASYNTH_REQUIRE(valid.isOk(), valid.message().c_str());
+    TERRASYNTH_REQUIRE(meters_per_pixel > 0.0, "meters_per_pixel must be positive");
+    layout_.tile_size = options.tile_size;
+    layout_.meters_per_pixel = meters_per_pixel;
+    build_settings_.layout = layout_;
+    build_settings_.mesh_step = options.mesh_step;
+    build_settings_.skirt_extra_spacings = options.skirt_extra_spacings;
+    build_settings_.optimize_order = options.optimize_order;
+    build_settings_.geomorph = options.geomorph;
+    build_settings_.max_level = options.max_level;
+    if (options_.view_radius_m <= 0.0) options_.view_radius_m = layout_.tileMeters(options_.max_level);
+    const int threads = options.threads > 0 ? options.threads
+                                            : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    pool_ = std::make_unique<WorkerPool>(threads);
+
+    // Culling is ours (per tile); the node itself has no meaningful bound in an unbounded world.
+    setCullingActive(false);
+    // We need UPDATE traversals without an update callback (which users may want for themselves).
+    setNumChildrenRequiringUpdateTraversal(getNumChildrenRequiringUpdateTraversal() + 1);
+
+    osg::ref_ptr<osg::Material> material = new osg::Material;
+    material->setDiffuse(osg::Material::FRONT_AND_BACK, osg::Vec4(0.62f, 0.58f, 0.50f, 1.0f));
+    material->setAmbient(osg::Material::FRONT_AND_BACK, osg::Vec4(0.30f, 0.29f, 0.27f, 1.0f));
+    getOrCreateStateSet()->setAttributeAndModes(material.get());
+    if (options.geomorph) installGeomorphProgram(*getOrCreateStateSet());
+}
+
+TerrainNode::~TerrainNode() { pool_.reset(); }
+
+void TerrainNode::traverse(osg::NodeVisitor& nv) {
+    switch (nv.getVisitorType()) {
+        case osg::NodeVisitor::CULL_VISITOR:
+            if (auto* cv = nv.asCullVisitor()) {
+                cull(*cv);
+                return;
+            }
+            break;
+        case osg::NodeVisitor::UPDATE_VISITOR: {
+            const osg::FrameStamp* fs = nv.getFrameStamp();
+            update(fs ? fs->getFrameNumber() : frame_counter_++);
+            return;  // tiles carry no callbacks
+        }
+        default:
+            break;
+    }
+    // Generic visitors are mostly scene rewriters (osgviewer runs osgUtil::Optimizer on what it
+    // loads: flattening the tile transforms would push world offsets into float vertices and merging
+    // would fuse tiles the manager swaps and evicts), so the managed tiles are not theirs to see.
+    if (nv.getVisitorType() == osg::NodeVisitor::NODE_VISITOR) return;
+    // Intersection and other typed visitors see the children: the tiles drawn in the last frame, or
+    // the last preload before the first frame — one consistent set of LODs.
+    osg::Group::traverse(nv);
+}
+
+osg::BoundingSphere TerrainNode::computeBound() const {
+    osg::BoundingSphere bs = osg::Group::computeBound();
+    if (bs.valid()) bs.expandBy(bs.center() + osg::Vec3(0.0f, 0.0f, 2.0f * bs.radius()));
+    return bs;
+}
+
+bool TerrainNode::touches(const TileKey& key, const PixelWindow& r) const {
+    const PixelWindow w = tileReadWindow(key, build_settings_);
+    // Level-k sample X reads level-0 pixels [X*2^k, (X+1)*2^k).
+    const int64_t s = int64_t{1} << key.level;
+    const int64_t x0 = w.x * s, y0 = w.y * s, x1 = (w.x + w.width) * s, y1 = (w.y + w.height) * s;
+    return x0 < r.x + r.width && r.x < x1 && y0 < r.y + r.height && r.y < y1;
+}
+
+void TerrainNode::invalidate(const PixelWindow& region, int64_t margin_px) {
+    const PixelWindow widened{region.x - margin_px, region.y - margin_px,
+                              static_cast<int>(region.width + 2 * margin_px),
+                              static_cast<int>(region.height + 2 * margin_px)};
+    std::lock_guard<std::mutex> lock(mutex_);
+    invalidateLocked({++generation_, widened, false});
+}
+
+void TerrainNode::invalidateAll() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    invalidateLocked({++generation_, {}, true});
+}
+
+void TerrainNode::invalidateLocked(const Invalidation& inv) {
+    invalidations_.push_back(inv);
+    if (invalidations_.size() > 1024) invalidations_.erase(invalidations_.begin());
+    failed_.clear();
+    for (auto it = tiles_.begin(); it != tiles_.end();) {
+        if (!inv.everything && !touches(it->first, inv.region)) {
+            ++it;
+            continue;
+        }
+        // Tiles in view keep being drawn until their rebuild is swapped in; the rest just go.
+        const bool in_view = cull_frame_ != ~0u && it->second.last_used_frame + 1 >= cull_frame_;
+        if (in_view) {
+            it->second.dirty = true;
+            ++it;
+        } else {
+            resident_bytes_ -= it->second.bytes;
+            released_.emplace_back(cull_frame_, it->second.node);
+            removeChild(it->second.node.get());
+            it = tiles_.erase(it);
+        }
+    }
+}
+
+void TerrainNode::setHeightSource(HeightSource source) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    source_ = std::move(source);
+}
+
+Status TerrainNode::preload(const PixelWindow& region, int level) {
+    TERRASYNTH_REQUIRE(level >= 0, "preload level must be >= 0");
+    const int64_t span = static_cast<int64_t>(layout_.tile_size) << level;
+    auto floorDiv = [](int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
+    std::vector<TileKey> keys;
+    for (int64_t ty = floorDiv(region.y, span); ty <= floorDiv(region.y + region.height - 1, span); ++ty)
+        for (int64_t tx = floorDiv(region.x, span); tx <= floorDiv(region.x + region.width - 1, span); ++tx)
+            keys.push_back({level, tx, ty});
+
+    HeightSource source;
+    uint64_t generation;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        source = source_;
+        generation = generation_;
+    }
+    // Own short-lived threads: the pool's queue belongs to the frame loop.
+    std::vector<TileBuild> builds(keys.size());
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t i = next++; i < keys.size(); i = next++) builds[i] = buildTile(source, keys[i], build_settings_);
+    };
+    std::vector<std::thread> threads;
+    for (int t = 0; t < pool_->threadCount(); ++t) threads.emplace_back(work);
+    for (auto& t : threads) t.join();
+
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto& b : builds)
+        if (!b.status) return b.status.withContext("preload");
+    removeChildren(0, getNumChildren());
+    for (auto& b : builds) {
+        b.generation = generation;
+        osg::ref_ptr<osg::Node> node = b.node;
+        attach(std::move(b));
+        addChild(node.get());
+    }
+    return Status::ok();
+}
+
+TerrainStats TerrainNode::stats() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    TerrainStats s = stats_;
+    s.resident_tiles = tiles_.size();
+    s.resident_bytes = resident_bytes_;
+    s.pending_builds = building_.size();
+    s.waiting_merge = completed_.size();
+    s.wanted_tiles = wanted_.size();
+    s.drawn_tiles = drawn_.size();
+    const double n = static_cast<double>(std::max<uint64_t>(1, stats_.tiles_built));
+    s.mean_build_ms = build_ms_sum_ / n;
+    s.mean_heights_ms = heights_ms_sum_ / n;
+    return s;
+}
+
+std::vector<double> TerrainNode::mergeTimesMs() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return merge_times_;
+}
+
+void TerrainNode::resetMergeStats() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    merge_times_.clear();
+    stats_.max_merge_ms = 0.0;
+}
+
+bool TerrainNode::settled() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!building_.empty() || !completed_.empty()) return false;
+    for (const auto& [key, priority] : wanted_) {
+        if (failed_.count(key)) continue;
+        auto it = tiles_.find(key);
+        if (it == tiles_.end() || it->second.dirty) return false;
+    }
+    return true;
+}
+
+std::vector<TileKey> TerrainNode::drawnTiles() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return drawn_keys_;
+}
+
+osg::ref_ptr<osg::Node> TerrainNode::tileNode(const TileKey& key) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = tiles_.find(key);
+    return it == tiles_.end() ? nullptr : it->second.node;
+}
+
+}  // namespace terrasynth::plugin

@@ -1,0 +1,208 @@
+// The tile manager driven headless (UPDATE + CULL, no GL) over a real DEM: refinement by screen-space
+// error, no overlapping tiles, the per-frame merge cap, bounded memory on a long flight, and edits
+// that swap only the tiles whose heights change.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <set>
+#include <thread>
+
+#include "terrasynth_plugin/headless_view.h"
+#include "terrasynth_plugin/terrain_node.h"
+#include "test_support.h"
+
+namespace terrasynth::plugin {
+namespace {
+
+struct Fixture {
+    Heightfield dem;
+    HeightSource source;
+    osg::ref_ptr<TerrainNode> node;
+    std::unique_ptr<HeadlessView> view;
+
+    explicit Fixture(TerrainNodeOptions o, const char* stem = "orom_alaska") {
+        dem = test::loadExemplarField(stem);
+        source = mirroredExemplarSource(dem);
+        node = new TerrainNode(source, dem.meters_per_pixel_x, o);
+        view = std::make_unique<HeadlessView>(node.get());
+    }
+    // Frames until the view has converged (workers run meanwhile).
+    int settle(const osg::Vec3d& eye, const osg::Vec3d& center, int max_frames = 3000) {
+        for (int f = 0; f < max_frames; ++f) {
+            view->frame(eye, center);
+            if (f > 2 && node->settled()) return f;
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        return -1;
+    }
+};
+
+TerrainNodeOptions smallTiles() {
+    TerrainNodeOptions o;
+    o.tile_size = 64;
+    o.max_level = 4;
+    o.threads = 2;
+    o.pixel_error = 4.0f;
+    return o;
+}
+
+bool isAncestor(TileKey a, const TileKey& b) {  // a strictly coarser and containing b
+    if (a.level <= b.level) return false;
+    TileKey c = b;
+    while (c.level < a.level) c = c.parent();
+    return c == a;
+}
+
+size_t residentKb() {
+    long pages = 0, resident = 0;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+        std::fclose(f);
+    }
+    return static_cast<size_t>(resident) * static_cast<size_t>(sysconf(_SC_PAGESIZE)) / 1024;
+}
+
+TEST(PluginPaging, RefinesTowardsTheCameraWithoutOverlaps) {
+    Fixture fx(smallTiles());
+    const osg::Vec3d eye(20000, -20000, 4500), center(26000, -26000, 1500);
+    ASSERT_GE(fx.settle(eye, center), 0) << "the view never converged";
+    const auto drawn = fx.node->drawnTiles();
+    ASSERT_GT(drawn.size(), 4u);
+    std::set<int> levels;
+    for (const auto& k : drawn) levels.insert(k.level);
+    // Fine tiles near the camera, coarse far away.
+    EXPECT_EQ(*levels.begin(), 0);
+    EXPECT_GE(levels.size(), 2u);
+    const TileKey under = fx.node->layout().keyAt(eye.x(), eye.y(), 0);
+    bool near_is_fine = false;
+    for (const auto& k : drawn) near_is_fine |= (k == under);
+    const TileKey ahead = fx.node->layout().keyAt(center.x(), center.y(), 0);
+    for (const auto& k : drawn) near_is_fine |= (k == ahead);
+    EXPECT_TRUE(near_is_fine);
+    // No tile is drawn together with one of its ancestors (that would z-fight / double draw).
+    for (const auto& a : drawn)
+        for (const auto& b : drawn) EXPECT_FALSE(isAncestor(a, b)) << a.level << " over " << b.level;
+    const TerrainStats st = fx.node->stats();
+    EXPECT_EQ(st.build_failures, 0u);
+    EXPECT_EQ(st.drawn_tiles, drawn.size());
+    // Writers and intersection visitors see exactly the drawn set as the node's children.
+    fx.view->frame(eye, center);
+    ASSERT_EQ(fx.node->getNumChildren(), drawn.size());
+    std::set<const osg::Node*> children;
+    for (unsigned i = 0; i < fx.node->getNumChildren(); ++i) children.insert(fx.node->getChild(i));
+    for (const auto& k : drawn) EXPECT_TRUE(children.count(fx.node->tileNode(k).get()));
+    EXPECT_GE(st.tiles_built, st.resident_tiles);
+}
+
+TEST(PluginPaging, MergeStaysWithinThePerFrameCap) {
+    TerrainNodeOptions o = smallTiles();
+    o.max_merges_per_frame = 3;
+    Fixture fx(o);
+    const osg::Vec3d eye(5000, -3000, 3500), center(9000, -9000, 1000);
+    int merged_frames = 0;
+    for (int f = 0; f < 400 && !(f > 5 && fx.node->settled()); ++f) {
+        fx.view->frame(eye, center);
+        const TerrainStats st = fx.node->stats();
+        EXPECT_LE(st.last_merge_count, 3);
+        merged_frames += st.last_merge_count > 0;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    EXPECT_GT(merged_frames, 3);
+    // A time budget smaller than any merge still merges exactly one tile per frame (progress).
+    o.merge_budget_ms = 1e-6;
+    o.max_merges_per_frame = 100;
+    Fixture slow(o);
+    for (int f = 0; f < 200; ++f) {
+        slow.view->frame(eye, center);
+        EXPECT_LE(slow.node->stats().last_merge_count, 1);
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    EXPECT_GT(slow.node->stats().tiles_merged, 10u);
+    for (double ms : slow.node->mergeTimesMs()) EXPECT_LT(ms, 4.0);
+}
+
+TEST(PluginPaging, MemoryStaysBoundedOnALongFlight) {
+    TerrainNodeOptions o = smallTiles();
+    o.cache_mb = 24.0;
+    Fixture fx(o);
+    const size_t budget = static_cast<size_t>(o.cache_mb * 1024 * 1024);
+    // 60 km straight east at 2 km altitude, 100 m per frame, looking ahead and down.
+    size_t max_resident = 0, rss_after_warmup = 0, rss_max = 0;
+    for (int f = 0; f <= 600; ++f) {
+        const osg::Vec3d eye(100.0 * f, -30000, 3000), center(100.0 * f + 3000, -30000, 1000);
+        fx.view->frame(eye, center);
+        std::this_thread::sleep_for(std::chrono::milliseconds(3));
+        const TerrainStats st = fx.node->stats();
+        max_resident = std::max(max_resident, st.resident_bytes);
+        if (f == 120) rss_after_warmup = residentKb();
+        if (f > 120) rss_max = std::max(rss_max, residentKb());
+    }
+    const TerrainStats st = fx.node->stats();
+    EXPECT_GT(st.tiles_evicted, 0u) << "the flight should have left tiles behind";
+    EXPECT_LE(max_resident, budget);
+    // The process does not grow with distance flown once the cache is full.
+    EXPECT_LT(rss_max, rss_after_warmup + 2 * budget / 1024) << "RSS kB after warm-up " << rss_after_warmup;
+}
+
+TEST(PluginPaging, EditsSwapOnlyTilesWhoseHeightsChange) {
+    TerrainNodeOptions o = smallTiles();
+    Fixture fx(o, "orom_rockies");
+    const osg::Vec3d eye(15000, -15000, 5000), center(22000, -22000, 1500);
+    ASSERT_GE(fx.settle(eye, center), 0);
+    const auto drawn = fx.node->drawnTiles();
+    std::vector<osg::ref_ptr<osg::Node>> before;
+    for (const auto& k : drawn) before.push_back(fx.node->tileNode(k));
+
+    // Raise a 40x40-pixel block of level-0 ground by 80 m (a level-k sample is raised when its
+    // level-0 block overlaps the edit, as a box filter would spread it).
+    const PixelWindow edit{230, 230, 40, 40};
+    fx.node->setHeightSource(editedSource(fx.source, [edit](const PixelWindow& w, int level, Heightfield& f) {
+        const int64_t s = int64_t{1} << level;
+        for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x) {
+                const int64_t gx = (w.x + x) * s, gy = (w.y + y) * s;
+                if (gx < edit.x + edit.width && gx + s > edit.x && gy < edit.y + edit.height && gy + s > edit.y)
+                    f.at(x, y) += 80.0f;
+            }
+    }));
+    // Invalidate everything: the manager itself must find which tiles really changed.
+    fx.node->invalidateAll();
+    ASSERT_GE(fx.settle(eye, center), 0);
+
+    size_t swapped = 0, kept = 0;
+    const TileBuildSettings settings{fx.node->layout(), o.mesh_step};
+    for (size_t i = 0; i < drawn.size(); ++i) {
+        const osg::ref_ptr<osg::Node> now = fx.node->tileNode(drawn[i]);
+        if (!now) continue;  // refined away meanwhile
+        const PixelWindow w = tileReadWindow(drawn[i], settings);
+        const int64_t s = int64_t{1} << drawn[i].level;
+        const bool touched = w.x * s < edit.x + edit.width && (w.x + w.width) * s > edit.x &&
+                             w.y * s < edit.y + edit.height && (w.y + w.height) * s > edit.y;
+        if (touched) {
+            EXPECT_NE(now.get(), before[i].get()) << "edited tile kept its old geometry";
+            ++swapped;
+        } else {
+            EXPECT_EQ(now.get(), before[i].get()) << "untouched tile was swapped";
+            ++kept;
+        }
+    }
+    EXPECT_GT(swapped, 0u);
+    EXPECT_GT(kept, swapped);
+    const TerrainStats st = fx.node->stats();
+    EXPECT_GE(st.tiles_swapped, swapped);
+    EXPECT_GT(st.rebuilds_unchanged, 0u);
+
+    // A local invalidation rebuilds only the tiles that read the region.
+    const uint64_t built = fx.node->stats().tiles_built;
+    fx.node->invalidate(edit, 0);
+    ASSERT_GE(fx.settle(eye, center), 0);
+    const uint64_t rebuilt = fx.node->stats().tiles_built - built;
+    EXPECT_GT(rebuilt, 0u);
+    EXPECT_LT(rebuilt, fx.node->stats().resident_tiles / 2);
+}
+
+}  // namespace
+}  // namespace terrasynth::plugin

@@ -1,0 +1,65 @@
+// The tile worker pool: best priority first, re-planning drops tasks that have not started, and
+// started tasks always finish.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "terrasynth_plugin/worker_pool.h"
+
+namespace terrasynth::plugin {
+namespace {
+
+TEST(PluginPool, RunsBestPriorityFirstAndDropsReplacedTasks) {
+    WorkerPool pool(1);
+    std::mutex m;
+    std::vector<int> order;
+    std::atomic<bool> started{false}, release{false};
+    // Occupy the only worker so that everything else queues.
+    pool.push({0.0, [&] {
+                   started = true;
+                   while (!release) std::this_thread::yield();
+               }});
+    while (!started) std::this_thread::yield();
+    auto record = [&](int id) { return [&, id] { std::lock_guard<std::mutex> l(m); order.push_back(id); }; };
+    for (int id : {5, 1, 4}) pool.push({double(id), record(id)});
+    // Re-plan: 5 and 4 are no longer wanted, 1 is still wanted and 2, 3 are new.
+    pool.replaceQueue({{3.0, record(3)}, {1.0, record(1)}, {2.0, record(2)}});
+    EXPECT_EQ(pool.pending(), 4u);
+    release = true;
+    pool.waitIdle();
+    EXPECT_EQ(order, (std::vector<int>{1, 2, 3}));
+    EXPECT_EQ(pool.pending(), 0u);
+}
+
+TEST(PluginPool, UsesAllThreadsAndFinishesStartedWork) {
+    std::atomic<int> running{0}, peak{0}, done{0};
+    {
+        WorkerPool pool(2);
+        EXPECT_EQ(pool.threadCount(), 2);
+        for (int i = 0; i < 8; ++i)
+            pool.push({double(i), [&] {
+                           const int now = ++running;
+                           int p = peak;
+                           while (now > p && !peak.compare_exchange_weak(p, now)) {}
+                           std::this_thread::sleep_for(std::chrono::milliseconds(10));
+                           --running;
+                           ++done;
+                       }});
+        pool.waitIdle();
+        EXPECT_EQ(done, 8);
+        pool.push({0.0, [&] {
+                       std::this_thread::sleep_for(std::chrono::milliseconds(30));
+                       ++done;
+                   }});
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }  // the destructor waits for the started task
+    EXPECT_EQ(peak, 2);
+    EXPECT_EQ(done, 9);
+}
+
+}  // namespace
+}  // namespace terrasynth::plugin
