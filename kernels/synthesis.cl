@@ -9,6 +9,19 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #define INTERIOR_MARGIN 2
+// Paper constants (s5), passed by the host as -D so they live in one place (constraints.h).
+#ifndef SEEDS_PER_TYPE
+#define SEEDS_PER_TYPE 9
+#endif
+#ifndef LOCALISATION
+#define LOCALISATION 4.0f
+#endif
+#ifndef TOLERANCE_SLOPE
+#define TOLERANCE_SLOPE 0.5f
+#endif
+#ifndef BLEND_SLOPE
+#define BLEND_SLOPE 0.5f
+#endif
 
 typedef struct {
     int x, y, width, height;  // region of the global grid held by a state buffer
@@ -85,11 +98,51 @@ kernel void upsample_jitter(global const float4* parent, Region parent_region, g
 
 // Eq. 3-7 for the pixels of one parity class (one of the 4 subpasses), in place: a pixel of the
 // class only reads pixels of other classes (and itself), so there are no races.
-// Costs are evaluated in quantised appearance units and weighted by scale^2 per mode, which is
-// the metric distance of eq. 7 without dequantising every tap.
+// Eq. 7 for candidate q in quantised units: the best offset h moves mode 0 only, so it is the
+// mean mode-0 gap; the cost is the scale^2-weighted squared distance times kappa.
+TS_INLINE float candidate_cost(global const ushort4* appearance, int width, const float4* ns, int q, float4 weight,
+                               float kappa, float* h_out) {
+    const int2 diagonals[4] = {(int2)(-1, -1), (int2)(1, -1), (int2)(-1, 1), (int2)(1, 1)};
+    float4 d[4];
+    for (int k = 0; k < 4; ++k) d[k] = ns[k] - convert_float4(appearance[q + diagonals[k].x + diagonals[k].y * width]);
+    const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
+    float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f, c3 = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        const float ex = d[k].x - h;
+        c0 = c0 + ex * ex;
+        c1 = c1 + d[k].y * d[k].y;
+        c2 = c2 + d[k].z * d[k].z;
+        c3 = c3 + d[k].w * d[k].w;
+    }
+    *h_out = h;
+    return (weight.x * c0 + weight.y * c1 + weight.z * c2 + weight.w * c3) * kappa;
+}
+
+// phi_d of eq. 8-9: small height errors are nudged gently, large ones by lambda; the tolerance t
+// grows with the distance d (metres) from the constraint site.
+TS_INLINE float phi_d(float x, float d, float s, float lambda) {
+    const float t = fmax(s * d, 1e-3f);
+    const float b = -lambda / (3.0f * t * t);
+    const float c = b * t * t * t + lambda * t;
+    if (x < -t) return lambda * x + c;
+    if (x > t) return lambda * x - c;
+    return -b * x * x * x;
+}
+
+// Corrects the pixels of one parity class (one of the 4 subpasses), in place: a pixel of the class
+// only reads pixels of other classes (and itself), so there are no races. Costs are evaluated in
+// quantised appearance units weighted by scale^2 per mode: the metric distance of eq. 7 without
+// dequantising every tap.
+// Constraints (s5): `target_sets` (one uint per region pixel, 0 = any type) rejects candidates of
+// other types, with seeding from the per-type lists when all are rejected; point constraints
+// (`points`, 8 floats each: site x, y in level-0 pixels, height, rise per metre x, y, radius in
+// level-0 pixels) pull the chosen height towards their targets with phi_d.
 kernel void correct(global float4* state, Region region, int first_x, int first_y,
                     global const ushort4* appearance, global const uint* similar, global const uchar* exemplar,
-                    global const int4* rects, int width, float4 scale) {
+                    global const int4* rects, int width, float4 scale, float offset0,
+                    global const uint* target_sets, int use_types, global const uchar* atlas_type,
+                    global const uint* type_seeds, global const int2* seed_ranges, uint seed_salt,
+                    global const float8* points, int point_count, int level, float meters_per_pixel0) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width || ly >= region.height) return;
     const int2 diagonals[4] = {(int2)(-1, -1), (int2)(1, -1), (int2)(-1, 1), (int2)(1, 1)};
@@ -105,6 +158,7 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         ns[k] = (float4)((g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
                          (g0.w + g1.w + g2.w) * third);
     }
+    const uint target = use_types ? target_sets[ly * region.width + lx] : 0u;
     float best_cost = INFINITY, best_h = 0.0f;
     int best_q = -1;
     // Inside a coherent patch all nine S(p + D) - D name the same pixel; evaluating it once gives
@@ -127,20 +181,9 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             const int candidates[2] = {qy * width + qx, (int)similar[c]};
             for (int j = 0; j < 2; ++j) {
                 const int q = candidates[j];
-                float4 d[4];
-                for (int k = 0; k < 4; ++k) d[k] = ns[k] - convert_float4(appearance[q + diagonals[k].x + diagonals[k].y * width]);
-                // Eq. 7: the best offset h moves mode 0 only, so it is the mean mode-0 gap.
-                const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
-                float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f, c3 = 0.0f;
-                for (int k = 0; k < 4; ++k) {
-                    const float ex = d[k].x - h;
-                    c0 = c0 + ex * ex;
-                    c1 = c1 + d[k].y * d[k].y;
-                    c2 = c2 + d[k].z * d[k].z;
-                    c3 = c3 + d[k].w * d[k].w;
-                }
-                float cost = weight.x * c0 + weight.y * c1 + weight.z * c2 + weight.w * c3;
-                cost = cost * (j == 0 ? 1.0f : 2.0f);  // kappa favours coherent patches
+                if (target != 0u && ((target >> atlas_type[q]) & 1u) == 0u) continue;  // s5.2 rejection
+                float h;
+                const float cost = candidate_cost(appearance, width, ns, q, weight, j == 0 ? 1.0f : 2.0f, &h);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_q = q;
@@ -149,7 +192,48 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             }
         }
     }
-    state[ly * region.width + lx] = (float4)((float)(best_q % width), (float)(best_q / width), best_h * scale.x, 0.0f);
+    const int gx = region.x + lx, gy = region.y + ly;
+    if (best_q < 0) {
+        // s5.2 seeding: nine random coordinates of each target type, from the preselected lists.
+        for (int t = 0; t < 32; ++t) {
+            if (((target >> t) & 1u) == 0u) continue;
+            const int2 range = seed_ranges[t];
+            for (int k = 0; k < SEEDS_PER_TYPE && range.y > 0; ++k) {
+                const int q = (int)type_seeds[range.x + (int)(ts_hash3(gx * SEEDS_PER_TYPE + k, gy, seed_salt ^ (uint)t) % (uint)range.y)];
+                float h;
+                const float cost = candidate_cost(appearance, width, ns, q, weight, 2.0f, &h);
+                if (cost < best_cost) {
+                    best_cost = cost;
+                    best_q = q;
+                    best_h = h;
+                }
+            }
+        }
+    }
+    float v = best_h * scale.x;
+    if (point_count > 0) {
+        // s5.1: blend the constraints reaching this pixel by inverse distance (sums of b*h_t, b*d, b).
+        const float cell = (float)(1 << level);
+        const float px0 = ((float)gx + 0.5f) * cell - 0.5f, py0 = ((float)gy + 0.5f) * cell - 0.5f;
+        float sum_b = 0.0f, sum_bh = 0.0f, sum_bd = 0.0f;
+        for (int i = 0; i < point_count; ++i) {
+            const float8 c = points[i];
+            const float ex = px0 - c.s0, ey = py0 - c.s1;
+            const float dist_px = sqrt(ex * ex + ey * ey);
+            const float reach = fmin(c.s5, LOCALISATION * cell);
+            if (dist_px >= reach) continue;
+            const float dist_m = dist_px * meters_per_pixel0;
+            const float b = 1.0f / fmax(dist_px, 0.5f);
+            sum_b += b;
+            sum_bh += b * (c.s2 + (c.s3 * ex + c.s4 * ey) * meters_per_pixel0);
+            sum_bd += b * dist_m;
+        }
+        if (sum_b > 0.0f) {
+            const float candidate_height = offset0 + scale.x * convert_float(appearance[best_q].x) + v;
+            v = v + phi_d(sum_bh / sum_b - candidate_height, sum_bd / sum_b, TOLERANCE_SLOPE, BLEND_SLOPE);
+        }
+    }
+    state[ly * region.width + lx] = (float4)((float)(best_q % width), (float)(best_q / width), v, 0.0f);
 }
 
 // Heights E(S) + V (bilinear in E) of the output window, and the sources when asked for.

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "terrasynth/constraints.h"
 #include "terrasynth/database.h"
 #include "terrasynth/heightfield.h"
 #include "terrasynth/status.h"
@@ -26,6 +27,8 @@ struct SynthesisParams {
     int correction_passes = 2;  // passes per level, each of 4 subpasses (paper: 2); 0..4
     // Coarsest synthesis level M (paper s4). -1: the database's coarsest level L.
     int coarsest_level = -1;
+    // Point and type constraints (paper s5); null = none. Shared, immutable while synthesizing.
+    std::shared_ptr<const SynthesisConstraints> constraints;
 };
 
 // A rectangle of the global pixel grid at some pyramid level (x east, y south).

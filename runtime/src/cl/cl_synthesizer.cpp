@@ -23,7 +23,7 @@ struct RegionArg {
 RegionArg toArg(const synth::LevelRegion& r) { return {r.x, r.y, r.width, r.height}; }
 
 struct DeviceLevel {
-    BufferHandle appearance, similar, exemplar, rects, heights, seeds;
+    BufferHandle appearance, similar, exemplar, rects, heights, seeds, types, type_seeds, seed_ranges;
     cl_uint seed_count = 0;
     cl_int width = 0;
     cl_float4 offset{}, scale{};
@@ -56,7 +56,14 @@ public:
         TS_CL_CHECK_NAMED(err, "clCreateContext(" + device_.name + ")");
         *queue_.out() = clCreateCommandQueue(context_.get(), device_.device, 0, &err);
         TS_CL_CHECK_NAMED(err, "clCreateCommandQueue");
-        auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, "-cl-std=CL1.2");
+        // Paper constants come from constraints.h so host and kernels cannot disagree; divide and sqrt
+        // are correctly rounded so the C++ reference can match the kernels.
+        const std::string defines = "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt -DSEEDS_PER_TYPE=" +
+                                    std::to_string(kSeedsPerType) + " -DLOCALISATION=" +
+                                    std::to_string(kPointLocalisation) + "f -DTOLERANCE_SLOPE=" +
+                                    std::to_string(kPointToleranceSlope) + "f -DBLEND_SLOPE=" +
+                                    std::to_string(kPointBlendSlope) + "f";
+        auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, defines);
         if (!program) return program.status();
         program_ = std::move(program.value());
         for (auto [handle, name] : {std::pair{&init_, "init_level"}, std::pair{&upsample_, "upsample_jitter"},
@@ -83,9 +90,12 @@ public:
 
 private:
     Result<BufferHandle> upload(const void* data, size_t bytes) {
+        // Empty arrays still get a small buffer so every kernel argument is a valid object.
+        static const float kPlaceholder[8] = {};
+        if (bytes == 0) data = kPlaceholder, bytes = sizeof(kPlaceholder);
         cl_int err = CL_SUCCESS;
-        BufferHandle buffer(clCreateBuffer(context_.get(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<size_t>(bytes, 4),
-                                           const_cast<void*>(data ? data : &err), &err));
+        BufferHandle buffer(clCreateBuffer(context_.get(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes,
+                                           const_cast<void*>(data), &err));
         if (err != CL_SUCCESS)
             return Status::error(std::string("OpenCL: clCreateBuffer(database, ") + std::to_string(bytes) +
                                  " bytes) failed: " + cl::errorName(err));
@@ -106,8 +116,16 @@ private:
             auto rect_buffer = upload(rects.data(), rects.size() * sizeof(cl_int4));
             auto heights = upload(l.height_m.data(), l.height_m.size() * sizeof(float));
             auto seed_buffer = upload(seeds.data(), seeds.size() * sizeof(uint32_t));
-            for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &seed_buffer})
+            const synth::SeedTable table = synth::seedTable(l);
+            auto types = upload(l.type.data(), l.type.size());
+            auto type_seeds = upload(table.seeds.data(), table.seeds.size() * sizeof(uint32_t));
+            auto seed_ranges = upload(table.ranges.data(), table.ranges.size() * sizeof(int32_t));
+            for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &seed_buffer, &types, &type_seeds,
+                            &seed_ranges})
                 if (!*r) return r->status();
+            d.types = std::move(types.value());
+            d.type_seeds = std::move(type_seeds.value());
+            d.seed_ranges = std::move(seed_ranges.value());
             d.appearance = std::move(appearance.value());
             d.similar = std::move(similar.value());
             d.exemplar = std::move(exemplar.value());
@@ -164,13 +182,30 @@ private:
         return s;
     }
 
+    Status beginLevel(int level, const synth::LevelRegion& region, const synth::LevelConstraints& constraints,
+                      uint32_t seed) override {
+        point_count_ = static_cast<cl_int>(constraints.points.size() / 8);
+        use_types_ = constraints.target_sets.empty() ? 0 : 1;
+        seed_salt_ = synth::seedingSalt(seed, level);
+        auto points = upload(constraints.points.data(), constraints.points.size() * sizeof(float));
+        if (!points) return points.status();
+        points_ = std::move(points.value());
+        auto targets = upload(constraints.target_sets.data(), constraints.target_sets.size() * sizeof(uint32_t));
+        if (!targets) return targets.status();
+        target_sets_ = std::move(targets.value());
+        (void)region;
+        return Status::ok();
+    }
+
     Status correct(int level, const synth::LevelRegion& region, int parity_x, int parity_y) override {
         const cl_int first_x = (parity_x - region.x) & 1, first_y = (parity_y - region.y) & 1;
         const size_t count_x = (region.width - first_x + 1) / 2, count_y = (region.height - first_y + 1) / 2;
         const DeviceLevel& d = levels_[level];
         ArgSetter args(correct_.get(), "correct");
         args(current_.get())(toArg(region))(first_x)(first_y)(d.appearance.get())(d.similar.get())(d.exemplar.get())(
-            d.rects.get())(d.width)(d.scale);
+            d.rects.get())(d.width)(d.scale)(d.offset.s[0])(target_sets_.get())(use_types_)(d.types.get())(
+            d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(points_.get())(point_count_)(cl_int(level))(
+            static_cast<cl_float>(db_->meters_per_pixel));
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);
     }
@@ -218,6 +253,9 @@ private:
     KernelHandle init_, upsample_, correct_, resolve_;
     std::vector<DeviceLevel> levels_;
     BufferHandle current_, next_;
+    BufferHandle points_, target_sets_;
+    cl_int point_count_ = 0, use_types_ = 0;
+    cl_uint seed_salt_ = 0;
     size_t current_capacity_ = 0, next_capacity_ = 0;
     size_t local_[2] = {32, 2};
     double bytes_per_pixel_ = 0.0;

@@ -26,6 +26,14 @@ Result<std::shared_ptr<Terrain>> Terrain::fromProject(Project project, const Ter
     }
     auto db = openProjectDatabase(project, options.database);
     if (!db) return db.status();
+    const std::string base_dir = project.path.find('/') == std::string::npos
+                                     ? std::string(".")
+                                     : project.path.substr(0, project.path.find_last_of('/'));
+    auto constraints = parseConstraints(project.constraints, base_dir, *db.value(), project.origin_x, project.origin_y,
+                                        project.width, project.height);
+    if (!constraints) return constraints.status().withContext(project.path);
+    if (!constraints->empty())
+        project.synthesis.constraints = std::make_shared<const SynthesisConstraints>(std::move(constraints.value()));
     std::shared_ptr<Terrain> terrain(new Terrain(std::move(project), db.value(), options));
     // Fail early (missing OpenCL device, kernel build) rather than on the first tile.
     auto synthesizer = terrain->synthesizerForThisThread();

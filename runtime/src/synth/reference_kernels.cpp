@@ -107,14 +107,48 @@ void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& chil
         }
 }
 
-// Costs are evaluated in quantised appearance units weighted by scale^2 per mode: the metric
-// distance of eq. 7 without dequantising every tap.
+namespace {
+
+// Eq. 7 for candidate q in quantised units (see the kernel's candidate_cost).
+float candidateCost(const DatabaseLevel& db, const Vec4* ns, int q, const float* weight, float kappa, float* h_out) {
+    static const int kDiagonals[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    Vec4 d[4];
+    for (int k = 0; k < 4; ++k) {
+        const Vec4 a = fetchAppearance(db, q + kDiagonals[k][0] + kDiagonals[k][1] * db.width);
+        d[k] = {ns[k].x - a.x, ns[k].y - a.y, ns[k].z - a.z, ns[k].w - a.w};
+    }
+    const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
+    float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f, c3 = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        const float ex = d[k].x - h;
+        c0 = c0 + ex * ex;
+        c1 = c1 + d[k].y * d[k].y;
+        c2 = c2 + d[k].z * d[k].z;
+        c3 = c3 + d[k].w * d[k].w;
+    }
+    *h_out = h;
+    return (weight[0] * c0 + weight[1] * c1 + weight[2] * c2 + weight[3] * c3) * kappa;
+}
+
+// phi_d of eq. 8-9.
+float phiD(float x, float d, float s, float lambda) {
+    const float t = std::fmax(s * d, 1e-3f);
+    const float b = -lambda / (3.0f * t * t);
+    const float c = b * t * t * t + lambda * t;
+    if (x < -t) return lambda * x + c;
+    if (x > t) return lambda * x - c;
+    return -b * x * x * x;
+}
+
+}  // namespace
+
 void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y,
-                      std::vector<PixelState>& state) {
+                      const CorrectionContext& context, std::vector<PixelState>& state) {
     static const int kDiagonals[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
     const float* scale = db.appearance_scale;
     const float inv_scale0 = 1.0f / scale[0];
     const float weight[4] = {scale[0] * scale[0], scale[1] * scale[1], scale[2] * scale[2], scale[3] * scale[3]};
+    const LevelConstraints& constraints = context.constraints;
     const int first_x = (parity_x - region.x) & 1, first_y = (parity_y - region.y) & 1;
     for (int ly = first_y; ly < region.height; ly += 2) {
         for (int lx = first_x; lx < region.width; lx += 2) {
@@ -129,6 +163,8 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 ns[k] = {(g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
                          (g0.w + g1.w + g2.w) * third};
             }
+            const uint32_t target =
+                constraints.target_sets.empty() ? 0u : constraints.target_sets[static_cast<size_t>(ly) * region.width + lx];
             float best_cost = INFINITY, best_h = 0.0f;
             int best_q = -1;
             // Candidates (eq. 3): C_j(S(p + D) - D) for the 3x3 neighbours D and j = 1, 2. (The kernel
@@ -145,23 +181,9 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                     const int candidates[2] = {qy * db.width + qx, static_cast<int>(db.similar[c])};
                     for (int j = 0; j < 2; ++j) {
                         const int q = candidates[j];
-                        Vec4 d[4];
-                        for (int k = 0; k < 4; ++k) {
-                            const Vec4 a = fetchAppearance(db, q + kDiagonals[k][0] + kDiagonals[k][1] * db.width);
-                            d[k] = {ns[k].x - a.x, ns[k].y - a.y, ns[k].z - a.z, ns[k].w - a.w};
-                        }
-                        // Eq. 7: the best offset h moves mode 0 only, so it is the mean mode-0 gap.
-                        const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
-                        float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f, c3 = 0.0f;
-                        for (int k = 0; k < 4; ++k) {
-                            const float ex = d[k].x - h;
-                            c0 = c0 + ex * ex;
-                            c1 = c1 + d[k].y * d[k].y;
-                            c2 = c2 + d[k].z * d[k].z;
-                            c3 = c3 + d[k].w * d[k].w;
-                        }
-                        float cost = weight[0] * c0 + weight[1] * c1 + weight[2] * c2 + weight[3] * c3;
-                        cost = cost * (j == 0 ? 1.0f : 2.0f);  // kappa favours coherent patches
+                        if (target != 0u && ((target >> db.type[q]) & 1u) == 0u) continue;  // s5.2 rejection
+                        float h;
+                        const float cost = candidateCost(db, ns, q, weight, j == 0 ? 1.0f : 2.0f, &h);
                         if (cost < best_cost) {
                             best_cost = cost;
                             best_q = q;
@@ -170,10 +192,54 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                     }
                 }
             }
+            const int gx = region.x + lx, gy = region.y + ly;
+            if (best_q < 0) {
+                // s5.2 seeding: nine random coordinates of each target type.
+                for (int t = 0; t < kMaxPaintableTypes; ++t) {
+                    if (((target >> t) & 1u) == 0u) continue;
+                    const int offset = context.seeds.ranges[2 * t], count = context.seeds.ranges[2 * t + 1];
+                    for (int k = 0; k < kSeedsPerType && count > 0; ++k) {
+                        const uint32_t pick = hash3(gx * kSeedsPerType + k, gy, context.seed_salt ^ static_cast<uint32_t>(t));
+                        const int q = static_cast<int>(context.seeds.seeds[offset + static_cast<int>(pick % static_cast<uint32_t>(count))]);
+                        float h;
+                        const float cost = candidateCost(db, ns, q, weight, 2.0f, &h);
+                        if (cost < best_cost) {
+                            best_cost = cost;
+                            best_q = q;
+                            best_h = h;
+                        }
+                    }
+                }
+            }
+            float v = best_h * scale[0];
+            if (!constraints.points.empty()) {
+                // s5.1: constraints reaching this pixel blended by inverse distance.
+                const float cell = static_cast<float>(1 << context.level);
+                const float px0 = (static_cast<float>(gx) + 0.5f) * cell - 0.5f;
+                const float py0 = (static_cast<float>(gy) + 0.5f) * cell - 0.5f;
+                float sum_b = 0.0f, sum_bh = 0.0f, sum_bd = 0.0f;
+                for (size_t i = 0; i < constraints.points.size(); i += 8) {
+                    const float* c = &constraints.points[i];
+                    const float ex = px0 - c[0], ey = py0 - c[1];
+                    const float dist_px = std::sqrt(ex * ex + ey * ey);
+                    const float reach = std::fmin(c[5], kPointLocalisation * cell);
+                    if (dist_px >= reach) continue;
+                    const float dist_m = dist_px * context.meters_per_pixel0;
+                    const float b = 1.0f / std::fmax(dist_px, 0.5f);
+                    sum_b += b;
+                    sum_bh += b * (c[2] + (c[3] * ex + c[4] * ey) * context.meters_per_pixel0);
+                    sum_bd += b * dist_m;
+                }
+                if (sum_b > 0.0f) {
+                    const float candidate_height =
+                        db.appearance_offset[0] + scale[0] * static_cast<float>(db.appearance[static_cast<size_t>(best_q) * 4]) + v;
+                    v = v + phiD(sum_bh / sum_b - candidate_height, sum_bd / sum_b, kPointToleranceSlope, kPointBlendSlope);
+                }
+            }
             PixelState& out = state[static_cast<size_t>(ly) * region.width + lx];
             out.x = static_cast<float>(best_q % db.width);
             out.y = static_cast<float>(best_q / db.width);
-            out.v = best_h * scale[0];
+            out.v = v;
         }
     }
 }

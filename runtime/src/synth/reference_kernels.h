@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "synth/constraint_fields.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/database.h"
 
@@ -24,9 +25,18 @@ void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& chil
                        const std::vector<PixelState>& parent, const LevelRegion& child_region, float jitter,
                        uint32_t seed, int child_level, std::vector<PixelState>& child);
 
-// Eq. 3-7 for the pixels of one parity class (one subpass), in place.
+// What a correction subpass needs besides the state: the level, its constraints and seed lists.
+struct CorrectionContext {
+    int level = 0;
+    float meters_per_pixel0 = 1.0f;
+    uint32_t seed_salt = 0;
+    LevelConstraints constraints;
+    SeedTable seeds;
+};
+
+// Eq. 3-7 (and the constraints of s5.1-5.2) for the pixels of one parity class, in place.
 void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y,
-                      std::vector<PixelState>& state);
+                      const CorrectionContext& context, std::vector<PixelState>& state);
 
 // Final heights E(S) + V (bilinear in E) of `out` (inside `region`), and optionally the sources.
 void referenceResolve(const DatabaseLevel& db, const LevelRegion& region, const std::vector<PixelState>& state,

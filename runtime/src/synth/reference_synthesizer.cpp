@@ -20,8 +20,16 @@ public:
         current_.swap(next);
         return Status::ok();
     }
+    Status beginLevel(int level, const LevelRegion&, const LevelConstraints& constraints, uint32_t seed) override {
+        context_.level = level;
+        context_.meters_per_pixel0 = static_cast<float>(db_.meters_per_pixel);
+        context_.seed_salt = seedingSalt(seed, level);
+        context_.constraints = constraints;
+        context_.seeds = seedTable(db_.levels[level]);
+        return Status::ok();
+    }
     Status correct(int level, const LevelRegion& region, int px, int py) override {
-        referenceCorrect(db_.levels[level], region, px, py, current_);
+        referenceCorrect(db_.levels[level], region, px, py, context_, current_);
         return Status::ok();
     }
     Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
@@ -35,6 +43,7 @@ public:
 private:
     const ExemplarDatabase& db_;
     std::vector<PixelState> current_;
+    CorrectionContext context_;
 };
 
 class ReferenceSynthesizer final : public Synthesizer {

@@ -25,6 +25,17 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
                              std::to_string(window.height));
     if (std::llabs(window.x) > kMaxGlobalCoordinate || std::llabs(window.y) > kMaxGlobalCoordinate)
         return Status::error("window origin beyond +-2^29 pixels");
+    if (params.constraints) {
+        for (size_t i = 0; i < params.constraints->points.size(); ++i) {
+            const PointConstraint& p = params.constraints->points[i];
+            if (!(p.radius_px > 0.0f) || !std::isfinite(p.height_m) || !(p.slope_angle_deg >= 0.0f && p.slope_angle_deg <= 80.0f))
+                return Status::error("point constraint " + std::to_string(i) +
+                                     ": radius must be > 0, height finite, slope angle 0..80 degrees");
+        }
+        if (!params.constraints->types.empty() && db.type_names.size() > static_cast<size_t>(kMaxPaintableTypes))
+            return Status::error("type painting supports databases of at most " + std::to_string(kMaxPaintableTypes) +
+                                 " types; this one has " + std::to_string(db.type_names.size()));
+    }
     return Status::ok();
 }
 
@@ -37,6 +48,10 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
     const SynthesisPlan plan = planSynthesis(window, output_level, coarsest, params.correction_passes);
     size_t peak = 0;
     auto correctLevel = [&](int level) -> Status {
+        Status begun = steps.beginLevel(level, plan.regions[level],
+                                        constraintsForLevel(params.constraints.get(), level, plan.regions[level]),
+                                        params.seed);
+        if (!begun) return begun;
         for (int pass = 0; pass < params.correction_passes; ++pass)
             for (const auto& parity : kSubpassParity) {
                 Status s = steps.correct(level, plan.regions[level], parity[0], parity[1]);

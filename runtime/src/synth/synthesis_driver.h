@@ -2,6 +2,7 @@
 // backends, which only differ in how they execute each step.
 #pragma once
 
+#include "synth/constraint_fields.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/synthesizer.h"
 
@@ -14,6 +15,9 @@ public:
     // Upsample + jitter from level+1 (the previous step's state) into `child` at `level`.
     virtual Status upsample(int level, const LevelRegion& parent, const LevelRegion& child, float jitter,
                             uint32_t seed) = 0;
+    // Called once per level before its correction subpasses.
+    virtual Status beginLevel(int level, const LevelRegion& region, const LevelConstraints& constraints,
+                              uint32_t seed) = 0;
     virtual Status correct(int level, const LevelRegion& region, int parity_x, int parity_y) = 0;
     virtual Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
                            bool want_sources) = 0;

@@ -1,0 +1,63 @@
+// terrasynth/constraints.h: user control inside the synthesis (Gain et al. 2015 section 5).
+//
+// Implemented here: point constraints (s5.1, eq. 8-9) and type painting (s5.2). Both act inside the
+// correction kernel, never as a post-hoc deformation, and both are disabled on the finest two levels
+// as in the paper. Coordinates are global pixels of level 0 (the project's grid); heights in metres.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "terrasynth/status.h"
+
+namespace terrasynth {
+
+struct ExemplarDatabase;
+
+struct PointConstraint {
+    double x = 0.0, y = 0.0;          // site, level-0 global pixels (x east, y south)
+    float height_m = 0.0f;            // target height at the site
+    float slope_direction_deg = 0.0f; // direction the ground rises towards, clockwise from north
+    float slope_angle_deg = 0.0f;     // 0..80; the target plane rises at tan(angle) m per m
+    float radius_px = 64.0f;          // area of effect, level-0 pixels (> 0)
+};
+
+// Paper defaults of eq. 8: tolerance slope s and outer slope lambda of phi_d.
+constexpr float kPointToleranceSlope = 0.5f;
+constexpr float kPointBlendSlope = 0.5f;
+// The area of effect at level i is min(radius, 4 * 2^i * kLocalisation) level-0 pixels (s5.1).
+constexpr float kPointLocalisation = 4.0f;
+// Geometric and type constraints act on levels >= this (s5.1, s5.2: off on the finest two).
+constexpr int kFirstConstrainedLevel = 2;
+// Type painting stores target sets as 32-bit masks: databases with more types cannot be painted.
+constexpr int kMaxPaintableTypes = 32;
+// Seeding (s5.2): candidates drawn per target type when every regular candidate is rejected.
+constexpr int kSeedsPerType = 9;
+
+// Painted target type per level-0 pixel over a rectangle of the global grid. kUnpainted = any type.
+struct TypePaint {
+    static constexpr uint8_t kUnpainted = 255;
+    int64_t x = 0, y = 0;
+    int width = 0, height = 0;
+    std::vector<uint8_t> types;  // width*height database type ids or kUnpainted
+
+    bool empty() const { return types.empty(); }
+};
+
+struct SynthesisConstraints {
+    std::vector<PointConstraint> points;
+    TypePaint types;
+    bool empty() const { return points.empty() && types.empty(); }
+};
+
+// Parses the "constraints" object of a project (docs/project-format.md) against the database's type
+// names. `extent_*` is the project's extent (type strokes and masks are relative to its origin).
+// Errors name the field: "constraints.points[1].radius_px: must be > 0".
+Result<SynthesisConstraints> parseConstraints(const nlohmann::json& constraints, const std::string& base_dir,
+                                              const ExemplarDatabase& db, int64_t extent_x, int64_t extent_y,
+                                              int extent_width, int extent_height);
+
+}  // namespace terrasynth

@@ -1,0 +1,36 @@
+// Private: what the correction kernels need of the user's constraints at one level and region
+// (Gain et al. 2015 s5.1-5.2), computed on the host and shared by both backends.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "synth/synthesis_plan.h"
+#include "terrasynth/constraints.h"
+#include "terrasynth/database.h"
+
+namespace terrasynth::synth {
+
+struct LevelConstraints {
+    // 8 floats per point constraint: site x, y (level-0 px), height (m), rise per metre east and
+    // south, radius (level-0 px), 0, 0. Empty on the finest two levels.
+    std::vector<float> points;
+    // One mask per region pixel (bit t = type t allowed; 0 = any type). Empty when nothing painted
+    // reaches the region or on the finest two levels. R^i is the union of the painted level-0 types
+    // under the pixel's 2^i x 2^i block, which equals the paper's recursive union that skips the
+    // all-types set (unpainted pixels add nothing).
+    std::vector<uint32_t> target_sets;
+};
+
+LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, const LevelRegion& region);
+
+// Flattened per-type seed lists of a level: offsets/counts per type (up to kMaxPaintableTypes).
+struct SeedTable {
+    std::vector<uint32_t> seeds;
+    std::vector<int32_t> ranges;  // 2 per type: offset, count
+};
+SeedTable seedTable(const DatabaseLevel& level);
+
+uint32_t seedingSalt(uint32_t seed, int level);
+
+}  // namespace terrasynth::synth

@@ -1,0 +1,162 @@
+// The "constraints" section of a .tsyn project (docs/project-format.md): point constraints and
+// type painting (as a mask PNG with a palette, or as brush strokes), in project pixels.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "terrasynth/constraints.h"
+#include "terrasynth/database.h"
+#include "terrasynth/heightfield_io.h"
+
+namespace terrasynth {
+namespace {
+
+using nlohmann::json;
+
+Result<double> number(const json& object, const char* key, const std::string& path, double lo, double hi,
+                      std::optional<double> fallback = std::nullopt) {
+    auto it = object.find(key);
+    if (it == object.end()) {
+        if (fallback) return *fallback;
+        return Status::error(path + "." + key + ": missing");
+    }
+    if (!it->is_number()) return Status::error(path + "." + key + ": must be a number");
+    const double v = it->get<double>();
+    if (!std::isfinite(v) || v < lo || v > hi)
+        return Status::error(path + "." + key + ": must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return v;
+}
+
+Result<uint8_t> typeByName(const ExemplarDatabase& db, const json& name, const std::string& path) {
+    if (!name.is_string()) return Status::error(path + ": must be a terrain type name");
+    const auto& names = db.type_names;
+    auto it = std::find(names.begin(), names.end(), name.get<std::string>());
+    if (it == names.end()) {
+        std::string known;
+        for (const auto& n : names) known += (known.empty() ? "" : ", ") + ("\"" + n + "\"");
+        return Status::error(path + ": unknown terrain type \"" + name.get<std::string>() + "\" (database has " + known + ")");
+    }
+    return static_cast<uint8_t>(it - names.begin());
+}
+
+Status parsePoints(const json& points, SynthesisConstraints& out, int64_t ox, int64_t oy) {
+    if (!points.is_array()) return Status::error("constraints.points: must be an array");
+    for (size_t i = 0; i < points.size(); ++i) {
+        const std::string path = "constraints.points[" + std::to_string(i) + "]";
+        const json& p = points[i];
+        if (!p.is_object()) return Status::error(path + ": must be an object");
+        PointConstraint c;
+        auto x = number(p, "x", path, -1e8, 1e8), y = number(p, "y", path, -1e8, 1e8);
+        auto h = number(p, "height_m", path, -12000, 12000);
+        auto dir = number(p, "slope_direction_deg", path, -360, 360, 0.0);
+        auto angle = number(p, "slope_angle_deg", path, 0, 80, 0.0);
+        auto radius = number(p, "radius_px", path, 1e-3, 1e6, 64.0);
+        for (auto* r : {&x, &y, &h, &dir, &angle, &radius})
+            if (!*r) return r->status();
+        c.x = ox + x.value();
+        c.y = oy + y.value();
+        c.height_m = static_cast<float>(h.value());
+        c.slope_direction_deg = static_cast<float>(dir.value());
+        c.slope_angle_deg = static_cast<float>(angle.value());
+        c.radius_px = static_cast<float>(radius.value());
+        out.points.push_back(c);
+    }
+    return Status::ok();
+}
+
+// Paints a round brush of `radius` pixels along each segment of a stroke.
+void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius, uint8_t type) {
+    auto dab = [&](double cx, double cy) {
+        for (int y = static_cast<int>(std::floor(cy - radius)); y <= static_cast<int>(std::ceil(cy + radius)); ++y)
+            for (int x = static_cast<int>(std::floor(cx - radius)); x <= static_cast<int>(std::ceil(cx + radius)); ++x)
+                if (x >= 0 && y >= 0 && x < paint.width && y < paint.height && (x - cx) * (x - cx) + (y - cy) * (y - cy) <= radius * radius)
+                    paint.types[static_cast<size_t>(y) * paint.width + x] = type;
+    };
+    for (size_t i = 0; i < line.size(); ++i) {
+        if (i == 0) dab(line[0].first, line[0].second);
+        if (i == 0) continue;
+        const double dx = line[i].first - line[i - 1].first, dy = line[i].second - line[i - 1].second;
+        const int steps = std::max(1, static_cast<int>(std::ceil(std::hypot(dx, dy) / std::max(0.5, radius * 0.5))));
+        for (int s = 1; s <= steps; ++s) dab(line[i - 1].first + dx * s / steps, line[i - 1].second + dy * s / steps);
+    }
+}
+
+Status parseTypes(const json& types, const std::string& base_dir, const ExemplarDatabase& db, SynthesisConstraints& out,
+                  int64_t ox, int64_t oy, int w, int h) {
+    if (!types.is_object()) return Status::error("constraints.types: must be an object");
+    TypePaint& paint = out.types;
+    paint.x = ox, paint.y = oy, paint.width = w, paint.height = h;
+    paint.types.assign(static_cast<size_t>(w) * h, TypePaint::kUnpainted);
+    if (auto mask = types.find("mask"); mask != types.end()) {
+        if (!mask->is_string()) return Status::error("constraints.types.mask: must be a PNG path");
+        const std::string path = mask->get<std::string>().front() == '/' ? mask->get<std::string>()
+                                                                          : base_dir + "/" + mask->get<std::string>();
+        auto image = readPng8(path);
+        if (!image) return image.status().withContext("constraints.types.mask");
+        if (image->width != w || image->height != h || image->channels != 1)
+            return Status::error("constraints.types.mask: " + path + " must be 8-bit gray of the project size " +
+                                 std::to_string(w) + "x" + std::to_string(h));
+        auto palette = types.find("palette");
+        if (palette == types.end() || !palette->is_object())
+            return Status::error("constraints.types.palette: must map mask values to type names");
+        uint8_t lookup[256];
+        std::fill(std::begin(lookup), std::end(lookup), TypePaint::kUnpainted);
+        for (auto it = palette->begin(); it != palette->end(); ++it) {
+            int value = -1;
+            try { value = std::stoi(it.key()); } catch (...) {}
+            if (value < 1 || value > 255) return Status::error("constraints.types.palette: keys must be mask values 1..255");
+            auto t = typeByName(db, it.value(), "constraints.types.palette." + it.key());
+            if (!t) return t.status();
+            lookup[value] = t.value();
+        }
+        for (size_t i = 0; i < paint.types.size(); ++i) paint.types[i] = lookup[image->samples[i]];
+    }
+    if (auto strokes = types.find("strokes"); strokes != types.end()) {
+        if (!strokes->is_array()) return Status::error("constraints.types.strokes: must be an array");
+        for (size_t i = 0; i < strokes->size(); ++i) {
+            const std::string path = "constraints.types.strokes[" + std::to_string(i) + "]";
+            const json& s = (*strokes)[i];
+            if (!s.is_object()) return Status::error(path + ": must be an object");
+            auto type = typeByName(db, s.value("type", json()), path + ".type");
+            if (!type) return type.status();
+            auto radius = number(s, "radius_px", path, 0.5, 1e5, 16.0);
+            if (!radius) return radius.status();
+            auto points = s.find("points");
+            if (points == s.end() || !points->is_array() || points->empty())
+                return Status::error(path + ".points: must be a non-empty array of [x, y]");
+            std::vector<std::pair<double, double>> line;
+            for (const json& p : *points) {
+                if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+                    return Status::error(path + ".points: each point must be [x, y]");
+                line.emplace_back(p[0].get<double>(), p[1].get<double>());
+            }
+            paintStroke(paint, line, radius.value(), type.value());
+        }
+    }
+    if (db.type_names.size() > static_cast<size_t>(kMaxPaintableTypes))
+        return Status::error("constraints.types: painting needs a database of at most 32 types");
+    return Status::ok();
+}
+
+}  // namespace
+
+Result<SynthesisConstraints> parseConstraints(const json& c, const std::string& base_dir, const ExemplarDatabase& db,
+                                              int64_t ox, int64_t oy, int w, int h) {
+    SynthesisConstraints out;
+    if (c.is_null()) return out;
+    if (!c.is_object()) return Status::error("constraints: must be an object");
+    for (auto it = c.begin(); it != c.end(); ++it)
+        if (it.key() != "points" && it.key() != "types")
+            return Status::error("constraints." + it.key() + ": not supported (points and types are)");
+    if (auto p = c.find("points"); p != c.end()) {
+        Status s = parsePoints(*p, out, ox, oy);
+        if (!s) return s;
+    }
+    if (auto t = c.find("types"); t != c.end()) {
+        Status s = parseTypes(*t, base_dir, db, out, ox, oy, w, h);
+        if (!s) return s;
+    }
+    return out;
+}
+
+}  // namespace terrasynth
