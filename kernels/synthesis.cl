@@ -118,8 +118,9 @@ TS_INLINE float candidate_cost(global const ushort4* appearance, int width, cons
     return (weight.x * c0 + weight.y * c1 + weight.z * c2 + weight.w * c3) * kappa;
 }
 
-// phi_d of eq. 8-9: small height errors are nudged gently, large ones by lambda; the tolerance t
-// grows with the distance d (metres) from the constraint site.
+// phi_d of eq. 8-9: small height errors are nudged gently, large ones by lambda; the tolerance
+// t = s * d metres grows with the distance d (level-0 pixels) from the constraint site. (With d in
+// metres the tolerance at 10 pixels of 90 m would be 450 m and constraints would barely hold.)
 TS_INLINE float phi_d(float x, float d, float s, float lambda) {
     const float t = fmax(s * d, 1e-3f);
     const float b = -lambda / (3.0f * t * t);
@@ -222,11 +223,10 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             const float dist_px = sqrt(ex * ex + ey * ey);
             const float reach = fmin(c.s5, LOCALISATION * cell);
             if (dist_px >= reach) continue;
-            const float dist_m = dist_px * meters_per_pixel0;
             const float b = 1.0f / fmax(dist_px, 0.5f);
             sum_b += b;
             sum_bh += b * (c.s2 + (c.s3 * ex + c.s4 * ey) * meters_per_pixel0);
-            sum_bd += b * dist_m;
+            sum_bd += b * dist_px;
         }
         if (sum_b > 0.0f) {
             const float candidate_height = offset0 + scale.x * convert_float(appearance[best_q].x) + v;

@@ -53,9 +53,11 @@ Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h) {
 }  // namespace terrasynth::test
 
 namespace terrasynth::test {
+std::string defaultDatabasePath() { return env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + std::string("/default.tsdb"); }
+
 std::shared_ptr<const ExemplarDatabase> defaultDatabase() {
     static std::shared_ptr<const ExemplarDatabase> db = [] {
-        const std::string cache = env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + std::string("/default.tsdb");
+        const std::string cache = defaultDatabasePath();
         auto loaded = loadOrBuildDatabase({dataDir() + "/exemplars"}, DatabaseBuildOptions{}, cache);
         if (!loaded) {
             ADD_FAILURE() << loaded.message();

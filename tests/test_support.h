@@ -27,4 +27,6 @@ namespace terrasynth::test {
 // The database of the shipped default exemplars, built once and cached in the build tree
 // (<build>/test_tmp/default.tsdb, rebuilt when stale) so test executables share it.
 std::shared_ptr<const ExemplarDatabase> defaultDatabase();
+// Where defaultDatabase() keeps its cache file (valid once defaultDatabase() has been called).
+std::string defaultDatabasePath();
 }  // namespace terrasynth::test

@@ -224,11 +224,10 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                     const float dist_px = std::sqrt(ex * ex + ey * ey);
                     const float reach = std::fmin(c[5], kPointLocalisation * cell);
                     if (dist_px >= reach) continue;
-                    const float dist_m = dist_px * context.meters_per_pixel0;
                     const float b = 1.0f / std::fmax(dist_px, 0.5f);
                     sum_b += b;
                     sum_bh += b * (c[2] + (c[3] * ex + c[4] * ey) * context.meters_per_pixel0);
-                    sum_bd += b * dist_m;
+                    sum_bd += b * dist_px;
                 }
                 if (sum_b > 0.0f) {
                     const float candidate_height =
