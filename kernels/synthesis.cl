@@ -13,9 +13,6 @@
 #ifndef SEEDS_PER_TYPE
 #define SEEDS_PER_TYPE 9
 #endif
-#ifndef LOCALISATION
-#define LOCALISATION 4.0f
-#endif
 #ifndef TOLERANCE_SLOPE
 #define TOLERANCE_SLOPE 0.5f
 #endif
@@ -135,15 +132,15 @@ TS_INLINE float phi_d(float x, float d, float s, float lambda) {
 // quantised appearance units weighted by scale^2 per mode: the metric distance of eq. 7 without
 // dequantising every tap.
 // Constraints (s5): `target_sets` (one uint per region pixel, 0 = any type) rejects candidates of
-// other types, with seeding from the per-type lists when all are rejected; point constraints
-// (`points`, 8 floats each: site x, y in level-0 pixels, height, rise per metre x, y, radius in
-// level-0 pixels) pull the chosen height towards their targets with phi_d.
+// other types, with seeding from the per-type lists when all are rejected; `blend` holds, per region
+// pixel, the point and curve constraints' inverse-distance sums (sum b, sum b*h_t, sum b*d), which
+// pull the chosen height towards the blended target with phi_d.
 kernel void correct(global float4* state, Region region, int first_x, int first_y,
                     global const ushort4* appearance, global const uint* similar, global const uchar* exemplar,
                     global const int4* rects, int width, float4 scale, float offset0,
                     global const uint* target_sets, int use_types, global const uchar* atlas_type,
                     global const uint* type_seeds, global const int2* seed_ranges, uint seed_salt,
-                    global const float8* points, int point_count, int level, float meters_per_pixel0) {
+                    global const float4* blend, int use_blend) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width || ly >= region.height) return;
     const int2 diagonals[4] = {(int2)(-1, -1), (int2)(1, -1), (int2)(-1, 1), (int2)(1, 1)};
@@ -212,25 +209,11 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         }
     }
     float v = best_h * scale.x;
-    if (point_count > 0) {
-        // s5.1: blend the constraints reaching this pixel by inverse distance (sums of b*h_t, b*d, b).
-        const float cell = (float)(1 << level);
-        const float px0 = ((float)gx + 0.5f) * cell - 0.5f, py0 = ((float)gy + 0.5f) * cell - 0.5f;
-        float sum_b = 0.0f, sum_bh = 0.0f, sum_bd = 0.0f;
-        for (int i = 0; i < point_count; ++i) {
-            const float8 c = points[i];
-            const float ex = px0 - c.s0, ey = py0 - c.s1;
-            const float dist_px = sqrt(ex * ex + ey * ey);
-            const float reach = fmin(c.s5, LOCALISATION * cell);
-            if (dist_px >= reach) continue;
-            const float b = 1.0f / fmax(dist_px, 0.5f);
-            sum_b += b;
-            sum_bh += b * (c.s2 + (c.s3 * ex + c.s4 * ey) * meters_per_pixel0);
-            sum_bd += b * dist_px;
-        }
-        if (sum_b > 0.0f) {
+    if (use_blend) {
+        const float4 sums = blend[ly * region.width + lx];  // sum b, sum b*h_t, sum b*d (s5.1)
+        if (sums.x > 0.0f) {
             const float candidate_height = offset0 + scale.x * convert_float(appearance[best_q].x) + v;
-            v = v + phi_d(sum_bh / sum_b - candidate_height, sum_bd / sum_b, TOLERANCE_SLOPE, BLEND_SLOPE);
+            v = v + phi_d(sums.y / sums.x - candidate_height, sums.z / sums.x, TOLERANCE_SLOPE, BLEND_SLOPE);
         }
     }
     state[ly * region.width + lx] = (float4)((float)(best_q % width), (float)(best_q / width), v, 0.0f);

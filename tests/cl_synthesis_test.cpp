@@ -159,3 +159,32 @@ TEST(Synthesis, MissingOpenClDeviceIsAClearError) {
     ASSERT_FALSE(s);
     EXPECT_NE(s.message().find("no device matches"), std::string::npos) << s.message();
 }
+
+TEST(SynthesisDifferential, OpenClMatchesReferenceWithConstraints) {
+    // Point constraints and type painting go through the same kernels; same tolerance as above.
+    auto constraints = std::make_shared<SynthesisConstraints>();
+    constraints->points.push_back({120.0, 90.0, 4000.0f, 45.0f, 20.0f, 80.0f});
+    TypePaint& paint = constraints->types;
+    paint.x = 0, paint.y = 0, paint.width = 200, paint.height = 160;
+    paint.types.assign(200 * 160, TypePaint::kUnpainted);
+    for (int y = 20; y < 60; ++y)
+        for (int x = 0; x < 200; ++x) paint.types[y * 200 + x] = 1;
+    SynthesisParams p;
+    p.seed = 5;
+    p.constraints = constraints;
+    const PixelWindow w{0, 0, 200, 160};
+    auto cl = openCl().synthesize(w, p, 0, true);
+    auto ref = reference().synthesize(w, p, 0, true);
+    ASSERT_TRUE(cl) << cl.message();
+    ASSERT_TRUE(ref) << ref.message();
+    size_t off = 0;
+    for (size_t i = 0; i < cl->heights.size(); ++i) off += std::fabs(cl->heights.heights[i] - ref->heights.heights[i]) > 1e-3f;
+    std::printf("with constraints: pixels differing by more than 1 mm: %zu of %zu\n", off, cl->heights.size());
+    EXPECT_LE(off, cl->heights.size() / 1000);
+    // And the constraint did something: the unconstrained terrain differs.
+    SynthesisParams free = p;
+    free.constraints.reset();
+    auto plain = openCl().synthesize(w, free, 0, false);
+    ASSERT_TRUE(plain);
+    EXPECT_NE(plain->heights.heights, cl->heights.heights);
+}

@@ -25,6 +25,26 @@ struct PointConstraint {
     float radius_px = 64.0f;          // area of effect, level-0 pixels (> 0)
 };
 
+// A widget on a curve constraint (s3, s5.1): properties at arc-length parameter t of the course.
+// Gradients are the rise of the ground in metres per metre going away from the curve on that side
+// (negative = the ground falls away, e.g. a ridge; a cliff top has 0 on one side and a large negative
+// value on the other). Reaches are the area of effect on each side in level-0 pixels.
+struct CurveWidget {
+    double t = 0.0;                // 0..1 along the course (arc length)
+    float height_m = 0.0f;
+    float left_gradient = 0.0f, right_gradient = 0.0f;
+    float left_reach_px = 32.0f, right_reach_px = 32.0f;
+};
+
+// A curve constraint: a course (polyline in level-0 global pixels, optionally smoothed as a
+// Catmull-Rom spline) with widgets interpolated by Hermite curves along it. Left is the left of the
+// direction of travel (x east, y south: left of a course heading east is north).
+struct CurveConstraint {
+    std::vector<std::pair<double, double>> course;
+    bool spline = true;
+    std::vector<CurveWidget> widgets;  // at least one; sorted by t
+};
+
 // Paper defaults of eq. 8: tolerance slope s and outer slope lambda of phi_d.
 constexpr float kPointToleranceSlope = 0.5f;
 constexpr float kPointBlendSlope = 0.5f;
@@ -49,8 +69,9 @@ struct TypePaint {
 
 struct SynthesisConstraints {
     std::vector<PointConstraint> points;
+    std::vector<CurveConstraint> curves;
     TypePaint types;
-    bool empty() const { return points.empty() && types.empty(); }
+    bool empty() const { return points.empty() && curves.empty() && types.empty(); }
 };
 
 // Parses the "constraints" object of a project (docs/project-format.md) against the database's type

@@ -59,8 +59,7 @@ public:
         // Paper constants come from constraints.h so host and kernels cannot disagree; divide and sqrt
         // are correctly rounded so the C++ reference can match the kernels.
         const std::string defines = "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt -DSEEDS_PER_TYPE=" +
-                                    std::to_string(kSeedsPerType) + " -DLOCALISATION=" +
-                                    std::to_string(kPointLocalisation) + "f -DTOLERANCE_SLOPE=" +
+                                    std::to_string(kSeedsPerType) + " -DTOLERANCE_SLOPE=" +
                                     std::to_string(kPointToleranceSlope) + "f -DBLEND_SLOPE=" +
                                     std::to_string(kPointBlendSlope) + "f";
         auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, defines);
@@ -184,12 +183,12 @@ private:
 
     Status beginLevel(int level, const synth::LevelRegion& region, const synth::LevelConstraints& constraints,
                       uint32_t seed) override {
-        point_count_ = static_cast<cl_int>(constraints.points.size() / 8);
+        use_blend_ = constraints.blend.empty() ? 0 : 1;
         use_types_ = constraints.target_sets.empty() ? 0 : 1;
         seed_salt_ = synth::seedingSalt(seed, level);
-        auto points = upload(constraints.points.data(), constraints.points.size() * sizeof(float));
-        if (!points) return points.status();
-        points_ = std::move(points.value());
+        auto blend = upload(constraints.blend.data(), constraints.blend.size() * sizeof(float));
+        if (!blend) return blend.status();
+        blend_ = std::move(blend.value());
         auto targets = upload(constraints.target_sets.data(), constraints.target_sets.size() * sizeof(uint32_t));
         if (!targets) return targets.status();
         target_sets_ = std::move(targets.value());
@@ -204,8 +203,7 @@ private:
         ArgSetter args(correct_.get(), "correct");
         args(current_.get())(toArg(region))(first_x)(first_y)(d.appearance.get())(d.similar.get())(d.exemplar.get())(
             d.rects.get())(d.width)(d.scale)(d.offset.s[0])(target_sets_.get())(use_types_)(d.types.get())(
-            d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(points_.get())(point_count_)(cl_int(level))(
-            static_cast<cl_float>(db_->meters_per_pixel));
+            d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_);
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);
     }
@@ -253,8 +251,8 @@ private:
     KernelHandle init_, upsample_, correct_, resolve_;
     std::vector<DeviceLevel> levels_;
     BufferHandle current_, next_;
-    BufferHandle points_, target_sets_;
-    cl_int point_count_ = 0, use_types_ = 0;
+    BufferHandle blend_, target_sets_;
+    cl_int use_blend_ = 0, use_types_ = 0;
     cl_uint seed_salt_ = 0;
     size_t current_capacity_ = 0, next_capacity_ = 0;
     size_t local_[2] = {32, 2};

@@ -3,21 +3,57 @@
 #include <algorithm>
 #include <cmath>
 
+#include "synth/curve_field.h"
 #include "synth/hash.h"
 
 namespace terrasynth::synth {
 
-LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, const LevelRegion& region) {
+void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
+                     float sign, std::vector<float>& blend) {
+    const double kDegree = 3.14159265358979323846 / 180.0;
+    const double rise = std::tan(point.slope_angle_deg * kDegree);
+    const double direction = point.slope_direction_deg * kDegree;  // clockwise from north, rising
+    const double rise_east = rise * std::sin(direction), rise_south = -rise * std::cos(direction);
+    const double cell = std::ldexp(1.0, level);
+    // s5.1: the area of effect shrinks at finer levels, min(radius, 4 * 2^level) level-0 pixels.
+    const double reach = std::min<double>(point.radius_px, kPointLocalisation * cell);
+    // Level-i pixels whose centres ((p + 0.5) * cell - 0.5) can be within reach.
+    const int x0 = std::max(region.x, static_cast<int>(std::floor((point.x - reach + 0.5) / cell - 0.5)));
+    const int x1 = std::min(region.x + region.width - 1, static_cast<int>(std::ceil((point.x + reach + 0.5) / cell - 0.5)));
+    const int y0 = std::max(region.y, static_cast<int>(std::floor((point.y - reach + 0.5) / cell - 0.5)));
+    const int y1 = std::min(region.y + region.height - 1, static_cast<int>(std::ceil((point.y + reach + 0.5) / cell - 0.5)));
+    for (int gy = y0; gy <= y1; ++gy) {
+        for (int gx = x0; gx <= x1; ++gx) {
+            const double ex = (gx + 0.5) * cell - 0.5 - point.x, ey = (gy + 0.5) * cell - 0.5 - point.y;
+            const double d = std::sqrt(ex * ex + ey * ey);
+            if (d >= reach) continue;
+            const double b = 1.0 / std::max(d, 0.5);
+            const double target = point.height_m + (rise_east * ex + rise_south * ey) * meters_per_pixel0;
+            float* sums = &blend[(static_cast<size_t>(gy - region.y) * region.width + (gx - region.x)) * 4];
+            sums[0] += sign * static_cast<float>(b);
+            sums[1] += sign * static_cast<float>(b * target);
+            sums[2] += sign * static_cast<float>(b * d);
+        }
+    }
+}
+
+LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, const LevelRegion& region,
+                                     double meters_per_pixel0) {
     LevelConstraints out;
     if (!constraints || level < kFirstConstrainedLevel) return out;
-    const double kDegree = 3.14159265358979323846 / 180.0;
-    for (const PointConstraint& p : constraints->points) {
-        const double rise = std::tan(p.slope_angle_deg * kDegree);
-        const double direction = p.slope_direction_deg * kDegree;  // clockwise from north
-        out.points.insert(out.points.end(),
-                          {static_cast<float>(p.x), static_cast<float>(p.y), p.height_m,
-                           static_cast<float>(rise * std::sin(direction)), static_cast<float>(-rise * std::cos(direction)),
-                           p.radius_px, 0.0f, 0.0f});
+    if (!constraints->points.empty() || !constraints->curves.empty()) {
+        out.blend.assign(region.pixels() * 4, 0.0f);
+        for (const PointConstraint& p : constraints->points)
+            accumulatePoint(p, level, region, meters_per_pixel0, 1.0f, out.blend);
+        if (!constraints->curves.empty()) {
+            std::vector<float> sums(region.pixels() * 3, 0.0f);
+            accumulateCurves(constraints->curves, level, region, meters_per_pixel0, sums);
+            for (size_t i = 0; i < region.pixels(); ++i)
+                for (int k = 0; k < 3; ++k) out.blend[i * 4 + k] += sums[i * 3 + k];
+        }
+        bool any = false;
+        for (size_t i = 0; i < region.pixels() && !any; ++i) any = out.blend[i * 4] > 0.0f;
+        if (!any) out.blend.clear();
     }
     const TypePaint& paint = constraints->types;
     if (paint.empty()) return out;

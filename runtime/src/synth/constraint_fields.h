@@ -12,9 +12,11 @@
 namespace terrasynth::synth {
 
 struct LevelConstraints {
-    // 8 floats per point constraint: site x, y (level-0 px), height (m), rise per metre east and
-    // south, radius (level-0 px), 0, 0. Empty on the finest two levels.
-    std::vector<float> points;
+    // Per region pixel, 4 floats: the inverse-distance blend sums of s5.1 over every point and curve
+    // constraint reaching it (sum b, sum b*h_t in metres, sum b*d in level-0 pixels, 0). Keeping
+    // sums means one constraint can be subtracted, changed and added back without re-evaluating the
+    // others. Empty when no constraint reaches the region, and on the finest two levels.
+    std::vector<float> blend;
     // One mask per region pixel (bit t = type t allowed; 0 = any type). Empty when nothing painted
     // reaches the region or on the finest two levels. R^i is the union of the painted level-0 types
     // under the pixel's 2^i x 2^i block, which equals the paper's recursive union that skips the
@@ -22,7 +24,12 @@ struct LevelConstraints {
     std::vector<uint32_t> target_sets;
 };
 
-LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, const LevelRegion& region);
+LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, const LevelRegion& region,
+                                     double meters_per_pixel0);
+
+// Adds (sign +1) or removes (-1) one point constraint's terms to/from 4-float blend sums of `region`.
+void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
+                     float sign, std::vector<float>& blend);
 
 // Flattened per-type seed lists of a level: offsets/counts per type (up to kMaxPaintableTypes).
 struct SeedTable {

@@ -212,27 +212,13 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 }
             }
             float v = best_h * scale[0];
-            if (!constraints.points.empty()) {
-                // s5.1: constraints reaching this pixel blended by inverse distance.
-                const float cell = static_cast<float>(1 << context.level);
-                const float px0 = (static_cast<float>(gx) + 0.5f) * cell - 0.5f;
-                const float py0 = (static_cast<float>(gy) + 0.5f) * cell - 0.5f;
-                float sum_b = 0.0f, sum_bh = 0.0f, sum_bd = 0.0f;
-                for (size_t i = 0; i < constraints.points.size(); i += 8) {
-                    const float* c = &constraints.points[i];
-                    const float ex = px0 - c[0], ey = py0 - c[1];
-                    const float dist_px = std::sqrt(ex * ex + ey * ey);
-                    const float reach = std::fmin(c[5], kPointLocalisation * cell);
-                    if (dist_px >= reach) continue;
-                    const float b = 1.0f / std::fmax(dist_px, 0.5f);
-                    sum_b += b;
-                    sum_bh += b * (c[2] + (c[3] * ex + c[4] * ey) * context.meters_per_pixel0);
-                    sum_bd += b * dist_px;
-                }
-                if (sum_b > 0.0f) {
+            if (!constraints.blend.empty()) {
+                // s5.1: the blended target of the constraints reaching this pixel.
+                const float* sums = &constraints.blend[(static_cast<size_t>(ly) * region.width + lx) * 4];
+                if (sums[0] > 0.0f) {
                     const float candidate_height =
                         db.appearance_offset[0] + scale[0] * static_cast<float>(db.appearance[static_cast<size_t>(best_q) * 4]) + v;
-                    v = v + phiD(sum_bh / sum_b - candidate_height, sum_bd / sum_b, kPointToleranceSlope, kPointBlendSlope);
+                    v = v + phiD(sums[1] / sums[0] - candidate_height, sums[2] / sums[0], kPointToleranceSlope, kPointBlendSlope);
                 }
             }
             PixelState& out = state[static_cast<size_t>(ly) * region.width + lx];

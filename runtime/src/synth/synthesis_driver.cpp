@@ -49,7 +49,7 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
     size_t peak = 0;
     auto correctLevel = [&](int level) -> Status {
         Status begun = steps.beginLevel(level, plan.regions[level],
-                                        constraintsForLevel(params.constraints.get(), level, plan.regions[level]),
+                                        constraintsForLevel(params.constraints.get(), level, plan.regions[level], db.meters_per_pixel),
                                         params.seed);
         if (!begun) return begun;
         for (int pass = 0; pass < params.correction_passes; ++pass)

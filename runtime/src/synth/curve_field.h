@@ -1,0 +1,22 @@
+// Private: curve constraints (Gain et al. 2015 s5.1) rasterised into the per-pixel blend sums the
+// correction kernel consumes. Implemented in curve_field.cpp.
+#pragma once
+
+#include <vector>
+
+#include "synth/synthesis_plan.h"
+#include "terrasynth/constraints.h"
+
+namespace terrasynth::synth {
+
+// Adds every curve's contribution at `level` to `sums`, 3 floats per pixel of `region` (row-major):
+// sum of b, sum of b * h_t (metres), sum of b * d (level-0 pixels), with b = 1 / max(d, 0.5) the
+// inverse-distance blend weight of s5.1 ("we maintain the sums ..."), d the distance of the pixel
+// centre (level-0 pixel coordinates of a level-i pixel p: (p + 0.5) * 2^i - 0.5) to the closest point
+// of the course, and h_t = height(t) + gradient_side(t) * d * meters_per_pixel0 at that closest point.
+// A pixel is affected only within the side's reach at t, localised per level to
+// min(reach, kPointLocalisation * 2^level) as for points. `sums` must have 3 * region.pixels() floats.
+void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region,
+                      double meters_per_pixel0, std::vector<float>& sums);
+
+}  // namespace terrasynth::synth
