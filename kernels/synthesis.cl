@@ -135,14 +135,14 @@ TS_INLINE float phi_d(float x, float d, float s, float lambda) {
 // other types, with seeding from the per-type lists when all are rejected; `blend` holds, per region
 // pixel, the point and curve constraints' inverse-distance sums (sum b, sum b*h_t, sum b*d), which
 // pull the chosen height towards the blended target with phi_d.
-kernel void correct(global float4* state, Region region, int first_x, int first_y,
-                    global const ushort4* appearance, global const uint* similar, global const uchar* exemplar,
-                    global const int4* rects, int width, float4 scale, float offset0,
+kernel void correct(global float4* state, Region region, int first_x, int first_y, int inset,
+                    global const ushort4* appearance, global const uint2* similar, int width, float4 scale,
+                    float offset0,
                     global const uint* target_sets, int use_types, global const uchar* atlas_type,
                     global const uint* type_seeds, global const int2* seed_ranges, uint seed_salt,
                     global const float4* blend, int use_blend) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
-    if (lx >= region.width || ly >= region.height) return;
+    if (lx >= region.width - inset || ly >= region.height - inset) return;
     const int2 diagonals[4] = {(int2)(-1, -1), (int2)(1, -1), (int2)(-1, 1), (int2)(1, 1)};
     const float inv_scale0 = 1.0f / scale.x;
     const float4 weight = scale * scale;
@@ -173,10 +173,9 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             for (int i = 0; i < seen_count; ++i) repeated = repeated || seen[i] == c;
             if (repeated) continue;
             seen[seen_count++] = c;
-            const int4 r = rects[exemplar[c]];
-            const int qx = clamp_int(cx, r.x + INTERIOR_MARGIN, r.x + r.z - 1 - INTERIOR_MARGIN);
-            const int qy = clamp_int(cy, r.y + INTERIOR_MARGIN, r.y + r.w - 1 - INTERIOR_MARGIN);
-            const int candidates[2] = {qy * width + qx, (int)similar[c]};
+            // C_1(c) = c moved into its exemplar's interior, C_2(c) from PatchMatch (s4), one load.
+            const uint2 table = similar[c];
+            const int candidates[2] = {(int)table.x, (int)table.y};
             for (int j = 0; j < 2; ++j) {
                 const int q = candidates[j];
                 if (target != 0u && ((target >> atlas_type[q]) & 1u) == 0u) continue;  // s5.2 rejection

@@ -23,7 +23,7 @@ struct RegionArg {
 RegionArg toArg(const synth::LevelRegion& r) { return {r.x, r.y, r.width, r.height}; }
 
 struct DeviceLevel {
-    BufferHandle appearance, similar, exemplar, rects, heights, seeds, types, type_seeds, seed_ranges;
+    BufferHandle appearance, candidates, exemplar, rects, heights, seeds, types, type_seeds, seed_ranges;
     cl_uint seed_count = 0;
     cl_int width = 0;
     cl_float4 offset{}, scale{};
@@ -110,7 +110,19 @@ private:
             for (const auto& list : l.type_seeds) seeds.insert(seeds.end(), list.begin(), list.end());
             if (seeds.empty()) return Status::error("database level without seed coordinates");
             auto appearance = upload(l.appearance.data(), l.appearance.size() * sizeof(uint16_t));
-            auto similar = upload(l.similar.data(), l.similar.size() * sizeof(uint32_t));
+            // The k = 2 table of s4 as one uint2 per atlas pixel: C_1(c) = c moved into its exemplar's
+            // interior (Lefebvre & Hoppe 2005's identity candidate) and C_2(c) from PatchMatch.
+            std::vector<cl_uint2> candidate_table(l.pixelCount());
+            for (size_t c = 0; c < candidate_table.size(); ++c) {
+                candidate_table[c].s[0] = static_cast<cl_uint>(c);
+                candidate_table[c].s[1] = l.similar[c];
+                if (l.exemplar[c] == kNoExemplar) continue;
+                const AtlasRect& r = l.rects[l.exemplar[c]];
+                const int x = std::clamp(static_cast<int>(c % l.width), r.x + kInteriorMargin, r.x + r.width - 1 - kInteriorMargin);
+                const int y = std::clamp(static_cast<int>(c / l.width), r.y + kInteriorMargin, r.y + r.height - 1 - kInteriorMargin);
+                candidate_table[c].s[0] = static_cast<cl_uint>(y * l.width + x);
+            }
+            auto similar = upload(candidate_table.data(), candidate_table.size() * sizeof(cl_uint2));
             auto exemplar = upload(l.exemplar.data(), l.exemplar.size());
             auto rect_buffer = upload(rects.data(), rects.size() * sizeof(cl_int4));
             auto heights = upload(l.height_m.data(), l.height_m.size() * sizeof(float));
@@ -126,7 +138,7 @@ private:
             d.type_seeds = std::move(type_seeds.value());
             d.seed_ranges = std::move(seed_ranges.value());
             d.appearance = std::move(appearance.value());
-            d.similar = std::move(similar.value());
+            d.candidates = std::move(similar.value());
             d.exemplar = std::move(exemplar.value());
             d.rects = std::move(rect_buffer.value());
             d.heights = std::move(heights.value());
@@ -196,13 +208,15 @@ private:
         return Status::ok();
     }
 
-    Status correct(int level, const synth::LevelRegion& region, int parity_x, int parity_y) override {
-        const cl_int first_x = (parity_x - region.x) & 1, first_y = (parity_y - region.y) & 1;
-        const size_t count_x = (region.width - first_x + 1) / 2, count_y = (region.height - first_y + 1) / 2;
+    Status correct(int level, const synth::LevelRegion& region, int parity_x, int parity_y, int inset) override {
+        const cl_int first_x = inset + ((parity_x - region.x - inset) & 1);
+        const cl_int first_y = inset + ((parity_y - region.y - inset) & 1);
+        if (region.width - inset <= first_x || region.height - inset <= first_y) return Status::ok();
+        const size_t count_x = (region.width - inset - first_x + 1) / 2, count_y = (region.height - inset - first_y + 1) / 2;
         const DeviceLevel& d = levels_[level];
         ArgSetter args(correct_.get(), "correct");
-        args(current_.get())(toArg(region))(first_x)(first_y)(d.appearance.get())(d.similar.get())(d.exemplar.get())(
-            d.rects.get())(d.width)(d.scale)(d.offset.s[0])(target_sets_.get())(use_types_)(d.types.get())(
+        args(current_.get())(toArg(region))(first_x)(first_y)(cl_int(inset))(d.appearance.get())(d.candidates.get())(
+            d.width)(d.scale)(d.offset.s[0])(target_sets_.get())(use_types_)(d.types.get())(
             d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_);
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);

@@ -142,16 +142,16 @@ float phiD(float x, float d, float s, float lambda) {
 
 }  // namespace
 
-void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y,
+void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y, int inset,
                       const CorrectionContext& context, std::vector<PixelState>& state) {
     static const int kDiagonals[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
     const float* scale = db.appearance_scale;
     const float inv_scale0 = 1.0f / scale[0];
     const float weight[4] = {scale[0] * scale[0], scale[1] * scale[1], scale[2] * scale[2], scale[3] * scale[3]};
     const LevelConstraints& constraints = context.constraints;
-    const int first_x = (parity_x - region.x) & 1, first_y = (parity_y - region.y) & 1;
-    for (int ly = first_y; ly < region.height; ly += 2) {
-        for (int lx = first_x; lx < region.width; lx += 2) {
+    const int first_x = inset + ((parity_x - region.x - inset) & 1), first_y = inset + ((parity_y - region.y - inset) & 1);
+    for (int ly = first_y; ly < region.height - inset; ly += 2) {
+        for (int lx = first_x; lx < region.width - inset; lx += 2) {
             // N_S (eq. 6): each diagonal neighbour averaged over three ways of reaching it.
             Vec4 ns[4];
             for (int k = 0; k < 4; ++k) {

@@ -35,7 +35,8 @@ struct CorrectionContext {
 };
 
 // Eq. 3-7 (and the constraints of s5.1-5.2) for the pixels of one parity class, in place.
-void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y,
+// Only pixels at least `inset` pixels inside the region are corrected.
+void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y, int inset,
                       const CorrectionContext& context, std::vector<PixelState>& state);
 
 // Final heights E(S) + V (bilinear in E) of `out` (inside `region`), and optionally the sources.

@@ -28,8 +28,8 @@ public:
         context_.seeds = seedTable(db_.levels[level]);
         return Status::ok();
     }
-    Status correct(int level, const LevelRegion& region, int px, int py) override {
-        referenceCorrect(db_.levels[level], region, px, py, context_, current_);
+    Status correct(int level, const LevelRegion& region, int px, int py, int inset) override {
+        referenceCorrect(db_.levels[level], region, px, py, inset, context_, current_);
         return Status::ok();
     }
     Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,

@@ -52,9 +52,11 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
                                         constraintsForLevel(params.constraints.get(), level, plan.regions[level], db.meters_per_pixel),
                                         params.seed);
         if (!begun) return begun;
+        int subpass = 0;
         for (int pass = 0; pass < params.correction_passes; ++pass)
             for (const auto& parity : kSubpassParity) {
-                Status s = steps.correct(level, plan.regions[level], parity[0], parity[1]);
+                const int inset = kSubpassReach * ++subpass;
+                Status s = steps.correct(level, plan.regions[level], parity[0], parity[1], inset);
                 if (!s) return s;
             }
         return Status::ok();

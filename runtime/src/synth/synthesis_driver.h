@@ -18,7 +18,9 @@ public:
     // Called once per level before its correction subpasses.
     virtual Status beginLevel(int level, const LevelRegion& region, const LevelConstraints& constraints,
                               uint32_t seed) = 0;
-    virtual Status correct(int level, const LevelRegion& region, int parity_x, int parity_y) = 0;
+    // Corrects the pixels of one parity class at least `inset` pixels inside the region: the ring
+    // outside would be spoiled by the margin anyway (synthesis_plan.h), so it is not computed.
+    virtual Status correct(int level, const LevelRegion& region, int parity_x, int parity_y, int inset) = 0;
     virtual Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
                            bool want_sources) = 0;
 };
