@@ -13,6 +13,12 @@
 #ifndef SEEDS_PER_TYPE
 #define SEEDS_PER_TYPE 9
 #endif
+#define NO_PREVIOUS 0xffffffffu
+#define COHERENCE_FROZEN 0
+#define COHERENCE_FREE 2
+#ifndef COHERENT_WEIGHT
+#define COHERENT_WEIGHT 0.25f
+#endif
 #ifndef TOLERANCE_SLOPE
 #define TOLERANCE_SLOPE 0.5f
 #endif
@@ -148,7 +154,8 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                     float offset0,
                     global const uint* target_sets, int use_types, global const uchar* atlas_type,
                     global const uint* type_seeds, global const int2* seed_ranges, uint seed_salt,
-                    global const float4* blend, int use_blend) {
+                    global const float4* blend, int use_blend, global const uint* prev_index,
+                    global const float* prev_v, global const uchar* coherence, int use_prev) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width - inset || ly >= region.height - inset) return;
     const int2 diagonals[4] = {(int2)(-1, -1), (int2)(1, -1), (int2)(-1, 1), (int2)(1, 1)};
@@ -164,9 +171,29 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         ns[k] = (float4)((g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
                          (g0.w + g1.w + g2.w) * third);
     }
-    const uint target = use_types ? target_sets[ly * region.width + lx] : 0u;
+    const int pixel = ly * region.width + lx;
+    const uint target = use_types ? target_sets[pixel] : 0u;
     float best_cost = INFINITY, best_h = 0.0f;
     int best_q = -1;
+    bool keep_v = false;
+    if (use_prev && prev_index[pixel] != NO_PREVIOUS) {
+        // s5.3: the previous result of this level and pass is the first candidate, its cost
+        // multiplied by W; frozen pixels keep it exactly, offset included.
+        const int q = (int)prev_index[pixel];
+        const uchar code = coherence[pixel];
+        if (code == COHERENCE_FROZEN) {
+            state[pixel] = (float4)((float)(q % width), (float)(q / width), prev_v[pixel], 0.0f);
+            return;
+        }
+        float h;
+        best_cost = candidate_cost(appearance, width, ns, q, weight, code == COHERENCE_FREE ? 1.0f : COHERENT_WEIGHT,
+                                   INFINITY, &h);
+        best_q = q;
+        best_h = h;
+        // A coherent pixel that keeps its previous coordinate keeps its previous offset too, so
+        // offsets do not drift away from an edit across the whole terrain.
+        keep_v = code != COHERENCE_FREE;
+    }
     // Inside a coherent patch all nine S(p + D) - D name the same pixel; evaluating it once gives
     // the same winner (ties keep the first), so repeated sources are skipped.
     int seen[9];
@@ -193,6 +220,7 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                     best_cost = cost;
                     best_q = q;
                     best_h = h;
+                    keep_v = false;
                 }
             }
         }
@@ -214,6 +242,10 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                 }
             }
         }
+    }
+    if (keep_v) {
+        state[pixel] = (float4)((float)(best_q % width), (float)(best_q / width), prev_v[pixel], 0.0f);
+        return;
     }
     float v = best_h * scale.x;
     if (use_blend) {

@@ -21,6 +21,35 @@
 
 namespace terrasynth {
 
+// Coherence (paper s5.3): the results of a previous synthesis, every level and every pass, kept so
+// the next synthesis can prefer them. Recorded when SynthesisParams::record_history is set.
+// Memory: 8 bytes per pixel per pass per level (about 21 bytes per output pixel for 2 passes).
+struct SynthesisHistory {
+    struct Pass {
+        std::vector<uint32_t> index;  // chosen atlas pixel per region pixel
+        std::vector<float> v;         // height offset V per region pixel, metres
+    };
+    struct Level {
+        int x = 0, y = 0, width = 0, height = 0;  // region of the global grid at this level
+        std::vector<Pass> passes;
+    };
+    std::vector<Level> levels;  // indexed by level; empty levels were not synthesized
+    size_t memoryBytes() const;
+};
+
+// Per-pixel coherence weight W^0 over a rectangle of the level-0 grid (s5.3): Free (W = 1) inside
+// the area of influence of the constraint being manipulated, Coherent (0.25) elsewhere, Frozen (0)
+// under the freeze brush. Coarser levels take Frozen if any pixel of the 2x2 block is frozen, else
+// the most frequent weight.
+enum class Coherence : uint8_t { Frozen = 0, Coherent = 1, Free = 2 };
+struct CoherenceMap {
+    int64_t x = 0, y = 0;
+    int width = 0, height = 0;
+    std::vector<Coherence> weights;           // width*height
+    Coherence outside = Coherence::Coherent;  // weight of pixels outside the rectangle
+};
+constexpr float kCoherentWeight = 0.25f;
+
 struct SynthesisParams {
     uint32_t seed = 1;
     float jitter = 0.4f;        // r of eq. 1, in pixels of each level; 0..1
@@ -29,6 +58,12 @@ struct SynthesisParams {
     int coarsest_level = -1;
     // Point and type constraints (paper s5); null = none. Shared, immutable while synthesizing.
     std::shared_ptr<const SynthesisConstraints> constraints;
+    // Coherence (s5.3): the previous results are offered as an extra candidate whose cost is
+    // multiplied by W; frozen pixels keep their previous S and V exactly. With unchanged inputs the
+    // result is bit-identical to the previous one. `coherence` null = Coherent everywhere.
+    std::shared_ptr<const SynthesisHistory> previous;
+    std::shared_ptr<const CoherenceMap> coherence;
+    bool record_history = false;  // fill SynthesisOutput::history
 };
 
 // A rectangle of the global pixel grid at some pyramid level (x east, y south).
@@ -44,6 +79,8 @@ struct SynthesisOutput {
     // exemplar at this level (x, y), and the exemplar index (database order).
     std::vector<float> source_x, source_y;
     std::vector<uint8_t> source_exemplar;
+    // Every level and pass of this synthesis, when SynthesisParams::record_history was set.
+    std::shared_ptr<SynthesisHistory> history;
 };
 
 enum class SynthesisBackend {

@@ -2,6 +2,7 @@
 // s4), the synthesis state in two buffers (current level and the one being upsampled into), and the
 // shared driver (synth/synthesis_driver.h) enqueues kernels/synthesis.cl step by step.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -61,7 +62,8 @@ public:
         const std::string defines = "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt -DSEEDS_PER_TYPE=" +
                                     std::to_string(kSeedsPerType) + " -DTOLERANCE_SLOPE=" +
                                     std::to_string(kPointToleranceSlope) + "f -DBLEND_SLOPE=" +
-                                    std::to_string(kPointBlendSlope) + "f";
+                                    std::to_string(kPointBlendSlope) + "f -DCOHERENT_WEIGHT=" +
+                                    std::to_string(kCoherentWeight) + "f";
         auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, defines);
         if (!program) return program.status();
         program_ = std::move(program.value());
@@ -194,7 +196,11 @@ private:
     }
 
     Status beginLevel(int level, const synth::LevelRegion& region, const synth::LevelConstraints& constraints,
-                      uint32_t seed) override {
+                      const std::vector<uint8_t>& coherence, uint32_t seed) override {
+        auto codes = upload(coherence.data(), coherence.size());
+        if (!codes) return codes.status();
+        coherence_ = std::move(codes.value());
+        has_coherence_ = !coherence.empty();
         use_blend_ = constraints.blend.empty() ? 0 : 1;
         use_types_ = constraints.target_sets.empty() ? 0 : 1;
         seed_salt_ = synth::seedingSalt(seed, level);
@@ -208,6 +214,32 @@ private:
         return Status::ok();
     }
 
+    Status beginPass(int, const synth::LevelRegion&, const synth::PassHistory& previous) override {
+        use_prev_ = has_coherence_ && !previous.index.empty() ? 1 : 0;
+        auto index = upload(previous.index.data(), previous.index.size() * sizeof(uint32_t));
+        if (!index) return index.status();
+        auto v = upload(previous.v.data(), previous.v.size() * sizeof(float));
+        if (!v) return v.status();
+        prev_index_ = std::move(index.value());
+        prev_v_ = std::move(v.value());
+        return Status::ok();
+    }
+
+    Status recordPass(int level, const synth::LevelRegion& region, SynthesisHistory::Pass& out) override {
+        std::vector<cl_float4> state(region.pixels());
+        TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
+                                        state.data(), 0, nullptr, nullptr));
+        const cl_uint width = static_cast<cl_uint>(levels_[level].width);
+        out.index.resize(state.size());
+        out.v.resize(state.size());
+        for (size_t i = 0; i < state.size(); ++i) {
+            out.index[i] = static_cast<uint32_t>(std::lround(state[i].s[1])) * width +
+                           static_cast<uint32_t>(std::lround(state[i].s[0]));
+            out.v[i] = state[i].s[2];
+        }
+        return Status::ok();
+    }
+
     Status correct(int level, const synth::LevelRegion& region, int parity_x, int parity_y, int inset) override {
         const cl_int first_x = inset + ((parity_x - region.x - inset) & 1);
         const cl_int first_y = inset + ((parity_y - region.y - inset) & 1);
@@ -217,7 +249,8 @@ private:
         ArgSetter args(correct_.get(), "correct");
         args(current_.get())(toArg(region))(first_x)(first_y)(cl_int(inset))(d.appearance.get())(d.candidates.get())(
             d.width)(d.scale)(d.offset.s[0])(target_sets_.get())(use_types_)(d.types.get())(
-            d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_);
+            d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_)(prev_index_.get())(
+            prev_v_.get())(coherence_.get())(use_prev_);
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);
     }
@@ -265,7 +298,9 @@ private:
     KernelHandle init_, upsample_, correct_, resolve_;
     std::vector<DeviceLevel> levels_;
     BufferHandle current_, next_;
-    BufferHandle blend_, target_sets_;
+    BufferHandle blend_, target_sets_, prev_index_, prev_v_, coherence_;
+    bool has_coherence_ = false;
+    cl_int use_prev_ = 0;
     cl_int use_blend_ = 0, use_types_ = 0;
     cl_uint seed_salt_ = 0;
     size_t current_capacity_ = 0, next_capacity_ = 0;

@@ -163,10 +163,28 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 ns[k] = {(g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
                          (g0.w + g1.w + g2.w) * third};
             }
-            const uint32_t target =
-                constraints.target_sets.empty() ? 0u : constraints.target_sets[static_cast<size_t>(ly) * region.width + lx];
+            const size_t pixel = static_cast<size_t>(ly) * region.width + lx;
+            const uint32_t target = constraints.target_sets.empty() ? 0u : constraints.target_sets[pixel];
             float best_cost = INFINITY, best_h = 0.0f;
             int best_q = -1;
+            bool keep_v = false;
+            if (!context.coherence.empty() && !context.previous.index.empty() && context.previous.index[pixel] != kNoPrevious) {
+                // s5.3: the previous result is the first candidate, its cost times W; frozen keeps it.
+                const int q = static_cast<int>(context.previous.index[pixel]);
+                const auto code = static_cast<Coherence>(context.coherence[pixel]);
+                if (code == Coherence::Frozen) {
+                    PixelState& out = state[pixel];
+                    out.x = static_cast<float>(q % db.width);
+                    out.y = static_cast<float>(q / db.width);
+                    out.v = context.previous.v[pixel];
+                    continue;
+                }
+                float h;
+                best_cost = candidateCost(db, ns, q, weight, code == Coherence::Free ? 1.0f : kCoherentWeight, &h);
+                best_q = q;
+                best_h = h;
+                keep_v = code != Coherence::Free;  // coherent pixels keep their offset, so it cannot drift
+            }
             // Candidates (eq. 3): C_j(S(p + D) - D) for the 3x3 neighbours D and j = 1, 2. (The kernel
             // skips sources already evaluated; with ties keeping the first, the winner is the same.)
             for (int ddy = -1; ddy <= 1; ++ddy) {
@@ -188,6 +206,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                             best_cost = cost;
                             best_q = q;
                             best_h = h;
+                            keep_v = false;
                         }
                     }
                 }
@@ -212,7 +231,8 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 }
             }
             float v = best_h * scale[0];
-            if (!constraints.blend.empty()) {
+            if (keep_v) v = context.previous.v[pixel];
+            if (!keep_v && !constraints.blend.empty()) {
                 // s5.1: the blended target of the constraints reaching this pixel.
                 const float* sums = &constraints.blend[(static_cast<size_t>(ly) * region.width + lx) * 4];
                 if (sums[0] > 0.0f) {

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "synth/coherence_fields.h"
 #include "synth/constraint_fields.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/database.h"
@@ -32,6 +33,8 @@ struct CorrectionContext {
     uint32_t seed_salt = 0;
     LevelConstraints constraints;
     SeedTable seeds;
+    std::vector<uint8_t> coherence;  // W^i codes per region pixel (empty: no previous result)
+    PassHistory previous;            // the previous result of the current pass (s5.3)
 };
 
 // Eq. 3-7 (and the constraints of s5.1-5.2) for the pixels of one parity class, in place.

@@ -1,6 +1,8 @@
 // The reference backend: runs the C++ reference kernels through the shared driver.
 #include "synth/reference_synthesizer.h"
 
+#include <cmath>
+
 #include "synth/reference_kernels.h"
 #include "synth/synthesis_driver.h"
 
@@ -20,12 +22,29 @@ public:
         current_.swap(next);
         return Status::ok();
     }
-    Status beginLevel(int level, const LevelRegion&, const LevelConstraints& constraints, uint32_t seed) override {
+    Status beginLevel(int level, const LevelRegion&, const LevelConstraints& constraints,
+                      const std::vector<uint8_t>& coherence, uint32_t seed) override {
+        context_.coherence = coherence;
         context_.level = level;
         context_.meters_per_pixel0 = static_cast<float>(db_.meters_per_pixel);
         context_.seed_salt = seedingSalt(seed, level);
         context_.constraints = constraints;
         context_.seeds = seedTable(db_.levels[level]);
+        return Status::ok();
+    }
+    Status beginPass(int, const LevelRegion&, const PassHistory& previous) override {
+        context_.previous = previous;
+        return Status::ok();
+    }
+    Status recordPass(int level, const LevelRegion&, SynthesisHistory::Pass& out) override {
+        const int width = db_.levels[level].width;
+        out.index.resize(current_.size());
+        out.v.resize(current_.size());
+        for (size_t i = 0; i < current_.size(); ++i) {
+            out.index[i] = static_cast<uint32_t>(std::lround(current_[i].y)) * static_cast<uint32_t>(width) +
+                           static_cast<uint32_t>(std::lround(current_[i].x));
+            out.v[i] = current_[i].v;
+        }
         return Status::ok();
     }
     Status correct(int level, const LevelRegion& region, int px, int py, int inset) override {

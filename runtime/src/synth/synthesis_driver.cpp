@@ -47,18 +47,33 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
     const int coarsest = coarsestLevel(db, params);
     const SynthesisPlan plan = planSynthesis(window, output_level, coarsest, params.correction_passes);
     size_t peak = 0;
+    auto history = params.record_history ? std::make_shared<SynthesisHistory>() : nullptr;
+    if (history) history->levels.resize(coarsest + 1);
     auto correctLevel = [&](int level) -> Status {
-        Status begun = steps.beginLevel(level, plan.regions[level],
-                                        constraintsForLevel(params.constraints.get(), level, plan.regions[level], db.meters_per_pixel),
-                                        params.seed);
+        const LevelRegion& region = plan.regions[level];
+        Status begun = steps.beginLevel(
+            level, region, constraintsForLevel(params.constraints.get(), level, region, db.meters_per_pixel),
+            params.previous ? coherenceCodes(params.coherence.get(), level, region) : std::vector<uint8_t>(),
+            params.seed);
         if (!begun) return begun;
+        if (history) {
+            history->levels[level] = {region.x, region.y, region.width, region.height, {}};
+            history->levels[level].passes.resize(params.correction_passes);
+        }
         int subpass = 0;
-        for (int pass = 0; pass < params.correction_passes; ++pass)
+        for (int pass = 0; pass < params.correction_passes; ++pass) {
+            Status s = steps.beginPass(level, region, previousPass(params.previous.get(), level, pass, region));
+            if (!s) return s;
             for (const auto& parity : kSubpassParity) {
                 const int inset = kSubpassReach * ++subpass;
-                Status s = steps.correct(level, plan.regions[level], parity[0], parity[1], inset);
+                s = steps.correct(level, region, parity[0], parity[1], inset);
                 if (!s) return s;
             }
+            if (history) {
+                s = steps.recordPass(level, region, history->levels[level].passes[pass]);
+                if (!s) return s;
+            }
+        }
         return Status::ok();
     };
     Status s = steps.init(coarsest, plan.regions[coarsest], params.seed);
@@ -82,6 +97,7 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
     }
     s = steps.resolve(output_level, plan.regions[output_level], plan.output, output, want_sources);
     if (!s) return s;
+    output.history = std::move(history);
     if (peak_state_pixels) *peak_state_pixels = std::max(peak, plan.regions[coarsest].pixels());
     return output;
 }

@@ -2,6 +2,7 @@
 // backends, which only differ in how they execute each step.
 #pragma once
 
+#include "synth/coherence_fields.h"
 #include "synth/constraint_fields.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/synthesizer.h"
@@ -15,9 +16,14 @@ public:
     // Upsample + jitter from level+1 (the previous step's state) into `child` at `level`.
     virtual Status upsample(int level, const LevelRegion& parent, const LevelRegion& child, float jitter,
                             uint32_t seed) = 0;
-    // Called once per level before its correction subpasses.
+    // Called once per level before its correction subpasses. `coherence` holds the W^i codes per
+    // region pixel, empty when there is no previous synthesis to be coherent with.
     virtual Status beginLevel(int level, const LevelRegion& region, const LevelConstraints& constraints,
-                              uint32_t seed) = 0;
+                              const std::vector<uint8_t>& coherence, uint32_t seed) = 0;
+    // Called before the 4 subpasses of each pass with the previous result of that pass (s5.3).
+    virtual Status beginPass(int level, const LevelRegion& region, const PassHistory& previous) = 0;
+    // Copies the state after a pass into `out` (index and V per region pixel).
+    virtual Status recordPass(int level, const LevelRegion& region, SynthesisHistory::Pass& out) = 0;
     // Corrects the pixels of one parity class at least `inset` pixels inside the region: the ring
     // outside would be spoiled by the margin anyway (synthesis_plan.h), so it is not computed.
     virtual Status correct(int level, const LevelRegion& region, int parity_x, int parity_y, int inset) = 0;
