@@ -8,9 +8,12 @@ packages=(
   libopenscenegraph-dev openscenegraph libglfw3-dev libglm-dev libimgui-dev
   libtinygltf-dev libmeshoptimizer-dev libpng-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  xvfb xauth libgl1-mesa-dri mesa-utils
-  nodejs npm python3-numpy
+  xvfb xauth libgl1-mesa-dri
+  python3-numpy
 )
+# The glTF validator runs on Node.js; machines that already have node/npm (e.g. from NodeSource)
+# keep theirs, since Debian's npm package conflicts with it.
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
