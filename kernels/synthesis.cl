@@ -158,6 +158,13 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                     global const float* prev_v, global const uchar* coherence, int use_prev) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width - inset || ly >= region.height - inset) return;
+    const int pixel = ly * region.width + lx;
+    if (use_prev && prev_index[pixel] != NO_PREVIOUS && coherence[pixel] == COHERENCE_FROZEN) {
+        // s5.3 freeze: the previous result stands, offset included, whatever the neighbours do.
+        const int q = (int)prev_index[pixel];
+        state[pixel] = (float4)((float)(q % width), (float)(q / width), prev_v[pixel], 0.0f);
+        return;
+    }
     const int2 diagonals[4] = {(int2)(-1, -1), (int2)(1, -1), (int2)(-1, 1), (int2)(1, 1)};
     const float inv_scale0 = 1.0f / scale.x;
     const float4 weight = scale * scale;
@@ -171,20 +178,15 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         ns[k] = (float4)((g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
                          (g0.w + g1.w + g2.w) * third);
     }
-    const int pixel = ly * region.width + lx;
     const uint target = use_types ? target_sets[pixel] : 0u;
     float best_cost = INFINITY, best_h = 0.0f;
     int best_q = -1;
     bool keep_v = false;
     if (use_prev && prev_index[pixel] != NO_PREVIOUS) {
         // s5.3: the previous result of this level and pass is the first candidate, its cost
-        // multiplied by W; frozen pixels keep it exactly, offset included.
+        // multiplied by W.
         const int q = (int)prev_index[pixel];
         const uchar code = coherence[pixel];
-        if (code == COHERENCE_FROZEN) {
-            state[pixel] = (float4)((float)(q % width), (float)(q / width), prev_v[pixel], 0.0f);
-            return;
-        }
         float h;
         best_cost = candidate_cost(appearance, width, ns, q, weight, code == COHERENCE_FREE ? 1.0f : COHERENT_WEIGHT,
                                    INFINITY, &h);

@@ -3,28 +3,49 @@
 namespace terrasynth::synth {
 namespace {
 
-uint8_t codeAt(const CoherenceMap& map, int level, int64_t gx, int64_t gy) {
-    const int64_t size = int64_t(1) << level;
-    const int64_t x0 = gx * size, y0 = gy * size;
-    if (x0 + size <= map.x || y0 + size <= map.y || x0 >= map.x + map.width || y0 >= map.y + map.height)
-        return static_cast<uint8_t>(map.outside);
-    if (level == 0) return static_cast<uint8_t>(map.weights[static_cast<size_t>(gy - map.y) * map.width + (gx - map.x)]);
+// The 2x2 rule of s5.3: Frozen if any child is frozen, else the most frequent (ties: the freer).
+uint8_t reduce(uint8_t a, uint8_t b, uint8_t c, uint8_t d) {
     int counts[3] = {0, 0, 0};
-    for (int dy = 0; dy < 2; ++dy)
-        for (int dx = 0; dx < 2; ++dx) ++counts[codeAt(map, level - 1, 2 * gx + dx, 2 * gy + dy)];
-    if (counts[0] > 0) return static_cast<uint8_t>(Coherence::Frozen);  // freezing is dominant
+    ++counts[a], ++counts[b], ++counts[c], ++counts[d];
+    if (counts[0] > 0) return static_cast<uint8_t>(Coherence::Frozen);
     return static_cast<uint8_t>(counts[1] > counts[2] ? Coherence::Coherent : Coherence::Free);
 }
 
 }  // namespace
 
-
 std::vector<uint8_t> coherenceCodes(const CoherenceMap* map, int level, const LevelRegion& region) {
-    std::vector<uint8_t> codes(region.pixels(), static_cast<uint8_t>(Coherence::Coherent));
-    if (!map) return codes;
-    for (int y = 0; y < region.height; ++y)
-        for (int x = 0; x < region.width; ++x)
-            codes[static_cast<size_t>(y) * region.width + x] = codeAt(*map, level, region.x + x, region.y + y);
+    std::vector<uint8_t> codes(region.pixels(), static_cast<uint8_t>(map ? map->outside : Coherence::Coherent));
+    if (!map || map->width == 0) return codes;
+    // Level-0 codes over the map's rectangle grown to whole level-`level` blocks (outside -> the
+    // map's outside code), then reduced level by level: one pass per level, no recursion.
+    const int64_t cell = int64_t(1) << level;
+    const int64_t bx0 = (map->x >= 0 ? map->x / cell : -((-map->x + cell - 1) / cell));
+    const int64_t by0 = (map->y >= 0 ? map->y / cell : -((-map->y + cell - 1) / cell));
+    const int64_t bx1 = (map->x + map->width + cell - 1) / cell, by1 = (map->y + map->height + cell - 1) / cell;
+    int64_t w = (bx1 - bx0) * cell, h = (by1 - by0) * cell;
+    std::vector<uint8_t> grid(static_cast<size_t>(w * h), static_cast<uint8_t>(map->outside));
+    for (int y = 0; y < map->height; ++y)
+        for (int x = 0; x < map->width; ++x)
+            grid[static_cast<size_t>((map->y + y - by0 * cell) * w + (map->x + x - bx0 * cell))] =
+                static_cast<uint8_t>(map->weights[static_cast<size_t>(y) * map->width + x]);
+    for (int l = 0; l < level; ++l) {
+        const int64_t nw = w / 2, nh = h / 2;
+        std::vector<uint8_t> next(static_cast<size_t>(nw * nh));
+        for (int64_t y = 0; y < nh; ++y)
+            for (int64_t x = 0; x < nw; ++x)
+                next[y * nw + x] = reduce(grid[(2 * y) * w + 2 * x], grid[(2 * y) * w + 2 * x + 1],
+                                          grid[(2 * y + 1) * w + 2 * x], grid[(2 * y + 1) * w + 2 * x + 1]);
+        grid.swap(next);
+        w = nw, h = nh;
+    }
+    for (int y = 0; y < region.height; ++y) {
+        const int64_t gy = region.y + y - by0;
+        if (gy < 0 || gy >= h) continue;
+        for (int x = 0; x < region.width; ++x) {
+            const int64_t gx = region.x + x - bx0;
+            if (gx >= 0 && gx < w) codes[static_cast<size_t>(y) * region.width + x] = grid[gy * w + gx];
+        }
+    }
     return codes;
 }
 
