@@ -45,3 +45,42 @@ TEST(Incremental, LocalEditMatchesFullResynthesisAndLeavesTheRestUntouched) {
     EXPECT_LT(terrain->heights().at(250, 260), first_edit.at(250, 260));
     EXPECT_EQ(terrain->heights().at(5, 5), before.at(5, 5));
 }
+
+TEST(Incremental, PasteFromAnExemplarIsExactFrozenAndBlends) {
+    auto s = Synthesizer::create(test::defaultDatabase());
+    ASSERT_TRUE(s) << s.message();
+    const PixelWindow extent{0, 0, 384, 384};
+    auto terrain = IncrementalTerrain::create(*s.value(), extent, SynthesisParams{});
+    ASSERT_TRUE(terrain) << terrain.message();
+    const Heightfield before = terrain->heights();
+    // A 60x50 rectangle of the Himalaya exemplar (index 2) pasted at (150, 160), raised by 120 m.
+    const ExemplarDatabase& db = *test::defaultDatabase();
+    const int himalaya = 2;
+    ASSERT_EQ(db.exemplars[himalaya].name, "orom_himalaya-everest");
+    IncrementalTerrain::Paste paste;
+    paste.exemplar = himalaya;
+    paste.source = {{300, 300}, {360, 300}, {360, 350}, {300, 350}};
+    paste.dx = -150, paste.dy = -140;
+    paste.height_offset_m = 120.0f;
+    ASSERT_TRUE(terrain->paste(paste));
+    const Heightfield& after = terrain->heights();
+    const DatabaseLevel& l0 = db.levels[0];
+    const AtlasRect& r = l0.rects[himalaya];
+    int checked = 0;
+    for (int y = 165; y < 205; ++y)
+        for (int x = 155; x < 205; ++x) {
+            const float exemplar = l0.height_m[static_cast<size_t>(r.y + y + 140) * l0.width + r.x + x + 150];
+            ASSERT_NEAR(after.at(x, y), exemplar + 120.0f, 1e-3f) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, 1000);
+    // Far away nothing moved; the ring around the paste was re-synthesized to blend.
+    EXPECT_EQ(after.at(5, 370), before.at(5, 370));
+    // Pasted pixels stay bit-identical through a later edit next to them.
+    const Heightfield pasted = after;
+    auto c = std::make_shared<SynthesisConstraints>();
+    c->points.push_back({230.0, 180.0, pasted.at(230, 180) + 400.0f, 0.0f, 0.0f, 48.0f});
+    ASSERT_TRUE(terrain->update(c, {230 - 48, 180 - 48, 97, 97}));
+    for (int y = 165; y < 205; ++y)
+        for (int x = 155; x < 205; ++x) ASSERT_EQ(terrain->heights().at(x, y), pasted.at(x, y));
+}

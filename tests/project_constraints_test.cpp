@@ -61,6 +61,30 @@ TEST(Constraints, PointConstraintPullsHeightAndSlope) {
     EXPECT_NEAR(direction, 90.0, 45.0);
 }
 
+TEST(Constraints, CurveConstraintRaisesARidgeAlongItsCourse) {
+    ASSERT_TRUE(test::defaultDatabase());
+    const std::string dir = test::scratchDir("constraints_curve");
+    const auto free = synthesize(writeProject(dir, "{}"));
+    // A ridge line from (100, 300) to (420, 300) at 700 m above the free terrain's mean along it,
+    // falling away on both sides.
+    double mean = 0.0;
+    for (int x = 100; x <= 420; ++x) mean += free.heights.at(x, 300);
+    mean /= 321.0;
+    const float crest = static_cast<float>(mean + 700.0);
+    const auto ridge = synthesize(writeProject(
+        dir, "{\"curves\": [{\"course\": [[100, 300], [420, 300]], \"spline\": false, \"widgets\": [{\"t\": 0, "
+             "\"height_m\": " + std::to_string(crest) + ", \"left_gradient\": -0.3, \"right_gradient\": -0.3, "
+             "\"left_reach_px\": 48, \"right_reach_px\": 48}]}]}"));
+    double before = 0.0, after = 0.0;
+    for (int x = 140; x <= 380; ++x) {
+        before += std::fabs(free.heights.at(x, 300) - crest);
+        after += std::fabs(ridge.heights.at(x, 300) - crest);
+    }
+    std::printf("mean distance of the course from the crest height: %.1f m free, %.1f m constrained\n", before / 241,
+                after / 241);
+    EXPECT_LT(after, 0.3 * before);
+}
+
 TEST(Constraints, PaintedPixelsDrawFromThePaintedType) {
     ASSERT_TRUE(test::defaultDatabase());
     const std::string dir = test::scratchDir("constraints_types");
@@ -93,7 +117,11 @@ TEST(Constraints, MalformedEntriesNameTheField) {
     auto bad_type = Terrain::open(writeProject(dir, "{\"types\": {\"strokes\": [{\"type\": \"lava\", \"points\": [[1, 1]]}]}}"));
     ASSERT_FALSE(bad_type);
     EXPECT_NE(bad_type.message().find("unknown terrain type \"lava\""), std::string::npos) << bad_type.message();
-    auto unsupported = Terrain::open(writeProject(dir, "{\"curves\": []}"));
+    auto unsupported = Terrain::open(writeProject(dir, "{\"rivers\": []}"));
     ASSERT_FALSE(unsupported);
-    EXPECT_NE(unsupported.message().find("constraints.curves"), std::string::npos) << unsupported.message();
+    EXPECT_NE(unsupported.message().find("constraints.rivers"), std::string::npos) << unsupported.message();
+    auto bad_widget = Terrain::open(writeProject(
+        dir, "{\"curves\": [{\"course\": [[0, 0], [50, 10]], \"widgets\": [{\"t\": 2, \"height_m\": 10}]}]}"));
+    ASSERT_FALSE(bad_widget);
+    EXPECT_NE(bad_widget.message().find("constraints.curves[0].widgets[0].t"), std::string::npos) << bad_widget.message();
 }

@@ -29,6 +29,20 @@ public:
     // Applies new constraints. `changed` is the level-0 rectangle (global pixels) the change can
     // affect. Re-synthesizes the affected part and merges it into heights() and the history.
     Status update(std::shared_ptr<const SynthesisConstraints> constraints, const PixelWindow& changed);
+    // Copy-paste (s5.3, fig. 8): the polygon `source` (level-0 pixels of the terrain's global grid,
+    // or of exemplar `exemplar` when >= 0) is moved by (dx, dy) pixels and raised by
+    // `height_offset_m`. The pasted coordinates are written for every level and pass and frozen, and
+    // a Free band of kCoherentBand pixels around the target lets the surroundings blend in.
+    struct Paste {
+        std::vector<std::pair<double, double>> source;
+        int exemplar = -1;
+        double dx = 0.0, dy = 0.0;
+        float height_offset_m = 0.0f;
+    };
+    Status paste(const Paste& paste);
+    // Level-0 pixels frozen so far by pastes (and kept frozen by later updates).
+    const std::vector<uint8_t>& frozenMask() const { return frozen_; }
+
     // Pixels re-synthesized by the last update (output window only), for benchmarks.
     PixelWindow lastWindow() const { return last_window_; }
 
@@ -41,6 +55,9 @@ private:
     Heightfield heights_;
     std::shared_ptr<SynthesisHistory> history_;
     PixelWindow last_window_;
+    std::vector<uint8_t> frozen_;  // per extent pixel, 1 = frozen (pasted)
+    Status resynthesize(const PixelWindow& free_area, const std::vector<uint8_t>* free_mask,
+                        std::shared_ptr<const SynthesisConstraints> constraints);
 };
 
 }  // namespace terrasynth

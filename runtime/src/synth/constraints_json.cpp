@@ -64,6 +64,52 @@ Status parsePoints(const json& points, SynthesisConstraints& out, int64_t ox, in
     return Status::ok();
 }
 
+Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, int64_t oy) {
+    if (!curves.is_array()) return Status::error("constraints.curves: must be an array");
+    for (size_t i = 0; i < curves.size(); ++i) {
+        const std::string path = "constraints.curves[" + std::to_string(i) + "]";
+        const json& c = curves[i];
+        if (!c.is_object()) return Status::error(path + ": must be an object");
+        CurveConstraint curve;
+        auto course = c.find("course");
+        if (course == c.end() || !course->is_array() || course->size() < 2)
+            return Status::error(path + ".course: must be at least 2 points [x, y]");
+        for (const json& p : *course) {
+            if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+                return Status::error(path + ".course: each point must be [x, y]");
+            curve.course.emplace_back(ox + p[0].get<double>(), oy + p[1].get<double>());
+        }
+        if (auto spline = c.find("spline"); spline != c.end()) {
+            if (!spline->is_boolean()) return Status::error(path + ".spline: must be true or false");
+            curve.spline = spline->get<bool>();
+        }
+        auto widgets = c.find("widgets");
+        if (widgets == c.end() || !widgets->is_array() || widgets->empty())
+            return Status::error(path + ".widgets: must be a non-empty array");
+        for (size_t w = 0; w < widgets->size(); ++w) {
+            const std::string wp = path + ".widgets[" + std::to_string(w) + "]";
+            const json& j = (*widgets)[w];
+            if (!j.is_object()) return Status::error(wp + ": must be an object");
+            CurveWidget widget;
+            auto t = number(j, "t", wp, 0, 1);
+            auto h = number(j, "height_m", wp, -12000, 12000);
+            auto lg = number(j, "left_gradient", wp, -20, 20, 0.0), rg = number(j, "right_gradient", wp, -20, 20, 0.0);
+            auto lr = number(j, "left_reach_px", wp, 1e-3, 1e5, 32.0), rr = number(j, "right_reach_px", wp, 1e-3, 1e5, 32.0);
+            for (auto* r : {&t, &h, &lg, &rg, &lr, &rr})
+                if (!*r) return r->status();
+            widget.t = t.value();
+            widget.height_m = static_cast<float>(h.value());
+            widget.left_gradient = static_cast<float>(lg.value()), widget.right_gradient = static_cast<float>(rg.value());
+            widget.left_reach_px = static_cast<float>(lr.value()), widget.right_reach_px = static_cast<float>(rr.value());
+            if (!curve.widgets.empty() && widget.t < curve.widgets.back().t)
+                return Status::error(wp + ".t: widgets must be sorted by t");
+            curve.widgets.push_back(widget);
+        }
+        out.curves.push_back(std::move(curve));
+    }
+    return Status::ok();
+}
+
 // Paints a round brush of `radius` pixels along each segment of a stroke.
 void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius, uint8_t type) {
     auto dab = [&](double cx, double cy) {
@@ -146,10 +192,14 @@ Result<SynthesisConstraints> parseConstraints(const json& c, const std::string& 
     if (c.is_null()) return out;
     if (!c.is_object()) return Status::error("constraints: must be an object");
     for (auto it = c.begin(); it != c.end(); ++it)
-        if (it.key() != "points" && it.key() != "types")
-            return Status::error("constraints." + it.key() + ": not supported (points and types are)");
+        if (it.key() != "points" && it.key() != "types" && it.key() != "curves")
+            return Status::error("constraints." + it.key() + ": not supported (points, curves and types are)");
     if (auto p = c.find("points"); p != c.end()) {
         Status s = parsePoints(*p, out, ox, oy);
+        if (!s) return s;
+    }
+    if (auto curves = c.find("curves"); curves != c.end()) {
+        Status s = parseCurves(*curves, out, ox, oy);
         if (!s) return s;
     }
     if (auto t = c.find("types"); t != c.end()) {

@@ -4,6 +4,7 @@
 #include "terrasynth/incremental.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "synth/synthesis_plan.h"
 
@@ -59,11 +60,19 @@ Result<IncrementalTerrain> IncrementalTerrain::create(Synthesizer& synthesizer, 
 }
 
 Status IncrementalTerrain::update(std::shared_ptr<const SynthesisConstraints> constraints, const PixelWindow& changed) {
-    const PixelWindow band = grow(changed, kCoherentBand);
+    return resynthesize(changed, nullptr, std::move(constraints));
+}
+
+// Free inside `free_area` (or where `free_mask`, over the extent, is set), Coherent in a band around
+// it, Frozen beyond and wherever a paste froze the terrain; re-synthesizes that window only.
+Status IncrementalTerrain::resynthesize(const PixelWindow& free_area, const std::vector<uint8_t>* free_mask,
+                                        std::shared_ptr<const SynthesisConstraints> constraints) {
+    const PixelWindow band = grow(free_area, kCoherentBand);
     // Frozen pixels reached by the window's own margin (2 pixels per subpass at level 0) settle
     // the band's neighbourhoods exactly as a full synthesis would.
     const PixelWindow window = intersect(grow(band, synth::kSubpassReach * 4 * params_.correction_passes), extent_);
     if (window.width == 0) return Status::ok();
+    if (frozen_.empty()) frozen_.assign(static_cast<size_t>(extent_.width) * extent_.height, 0);
     auto map = std::make_shared<CoherenceMap>();
     map->x = window.x, map->y = window.y, map->width = window.width, map->height = window.height;
     map->outside = Coherence::Frozen;
@@ -71,9 +80,12 @@ Status IncrementalTerrain::update(std::shared_ptr<const SynthesisConstraints> co
     for (int y = 0; y < window.height; ++y)
         for (int x = 0; x < window.width; ++x) {
             const int64_t gx = window.x + x, gy = window.y + y;
+            const size_t e = static_cast<size_t>(gy - extent_.y) * extent_.width + (gx - extent_.x);
             auto inside = [&](const PixelWindow& w) { return gx >= w.x && gy >= w.y && gx < w.x + w.width && gy < w.y + w.height; };
-            map->weights[static_cast<size_t>(y) * window.width + x] =
-                inside(changed) ? Coherence::Free : (inside(band) ? Coherence::Coherent : Coherence::Frozen);
+            const bool free = free_mask ? inside(free_area) && (*free_mask)[e] : inside(free_area);
+            Coherence c = free ? Coherence::Free : (inside(band) ? Coherence::Coherent : Coherence::Frozen);
+            if (frozen_[e]) c = Coherence::Frozen;
+            map->weights[static_cast<size_t>(y) * window.width + x] = c;
         }
     SynthesisParams params = params_;
     params.constraints = std::move(constraints);
@@ -92,6 +104,80 @@ Status IncrementalTerrain::update(std::shared_ptr<const SynthesisConstraints> co
     params_.constraints = params.constraints;
     last_window_ = window;
     return Status::ok();
+}
+
+namespace {
+
+bool insidePolygon(const std::vector<std::pair<double, double>>& poly, double x, double y) {
+    bool in = false;
+    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+        const auto [xi, yi] = poly[i];
+        const auto [xj, yj] = poly[j];
+        if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) in = !in;
+    }
+    return in;
+}
+
+}  // namespace
+
+Status IncrementalTerrain::paste(const Paste& paste) {
+    if (paste.source.size() < 3) return Status::error("paste: the source polygon needs at least 3 points");
+    const ExemplarDatabase& db = synthesizer_->database();
+    if (paste.exemplar >= static_cast<int>(db.exemplars.size()))
+        return Status::error("paste: exemplar " + std::to_string(paste.exemplar) + " does not exist");
+    if (frozen_.empty()) frozen_.assign(static_cast<size_t>(extent_.width) * extent_.height, 0);
+    std::vector<std::pair<double, double>> target = paste.source;
+    for (auto& [x, y] : target) x += paste.dx, y += paste.dy;
+    // Write the source coordinates into every level and pass of the history at the target (s5.3:
+    // "store the relevant coordinate values S^i(Omega) for all levels and sub-passes").
+    const SynthesisHistory source_history = *history_;  // terrain sources read the state before the paste
+    for (size_t level = 0; level < history_->levels.size(); ++level) {
+        auto& l = history_->levels[level];
+        if (l.width == 0) continue;
+        const double cell = std::ldexp(1.0, static_cast<int>(level));
+        const DatabaseLevel& dl = db.levels[level];
+        for (int y = 0; y < l.height; ++y)
+            for (int x = 0; x < l.width; ++x) {
+                // Level-0 position of this pixel's centre.
+                const double px = (l.x + x + 0.5) * cell - 0.5, py = (l.y + y + 0.5) * cell - 0.5;
+                if (!insidePolygon(target, px, py)) continue;
+                const double sx = px - paste.dx, sy = py - paste.dy;  // where it comes from, level 0
+                for (size_t pass = 0; pass < l.passes.size(); ++pass) {
+                    const size_t i = static_cast<size_t>(y) * l.width + x;
+                    if (paste.exemplar >= 0) {
+                        const AtlasRect& r = dl.rects[paste.exemplar];
+                        const int ex = static_cast<int>(std::lround((sx + 0.5) / cell - 0.5));
+                        const int ey = static_cast<int>(std::lround((sy + 0.5) / cell - 0.5));
+                        if (ex < kInteriorMargin || ey < kInteriorMargin || ex >= r.width - kInteriorMargin ||
+                            ey >= r.height - kInteriorMargin)
+                            return Status::error("paste: source polygon leaves exemplar " +
+                                                 db.exemplars[paste.exemplar].name + " at level " + std::to_string(level));
+                        l.passes[pass].index[i] = static_cast<uint32_t>((r.y + ey) * dl.width + r.x + ex);
+                        l.passes[pass].v[i] = paste.height_offset_m;
+                    } else {
+                        const auto& sl = source_history.levels[level];
+                        const int hx = static_cast<int>(std::lround((sx + 0.5) / cell - 0.5)) - sl.x;
+                        const int hy = static_cast<int>(std::lround((sy + 0.5) / cell - 0.5)) - sl.y;
+                        if (hx < 0 || hy < 0 || hx >= sl.width || hy >= sl.height)
+                            return Status::error("paste: source polygon leaves the terrain at level " + std::to_string(level));
+                        const size_t f = static_cast<size_t>(hy) * sl.width + hx;
+                        l.passes[pass].index[i] = sl.passes[pass].index[f];
+                        l.passes[pass].v[i] = sl.passes[pass].v[f] + paste.height_offset_m;
+                    }
+                }
+            }
+    }
+    // Freeze the target; the band around it is re-synthesized Free so the surroundings blend.
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (auto [x, y] : target) x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+    const PixelWindow box = intersect({static_cast<int64_t>(std::floor(x0)), static_cast<int64_t>(std::floor(y0)),
+                                       static_cast<int>(std::ceil(x1 - x0)) + 1, static_cast<int>(std::ceil(y1 - y0)) + 1},
+                                      extent_);
+    for (int64_t y = box.y; y < box.y + box.height; ++y)
+        for (int64_t x = box.x; x < box.x + box.width; ++x)
+            if (insidePolygon(target, static_cast<double>(x), static_cast<double>(y)))
+                frozen_[static_cast<size_t>(y - extent_.y) * extent_.width + (x - extent_.x)] = 1;
+    return resynthesize(grow(box, kCoherentBand), nullptr, params_.constraints);
 }
 
 }  // namespace terrasynth

@@ -1,0 +1,95 @@
+// Curve constraint properties along the course (Gain et al. 2015 s3: "We interpolate the widget
+// values to derive attributes elsewhere on the constraint curve, using Hermite curves").
+#include "synth/curve_profile.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace terrasynth::synth {
+namespace {
+
+CurveProperties valuesOf(const CurveWidget& w) {
+    return {w.height_m, w.left_gradient, w.right_gradient, w.left_reach_px, w.right_reach_px};
+}
+
+CurveProperties combine(const CurveProperties& a, double wa, const CurveProperties& b, double wb) {
+    return {a.height * wa + b.height * wb, a.left_gradient * wa + b.left_gradient * wb,
+            a.right_gradient * wa + b.right_gradient * wb, a.left_reach * wa + b.left_reach * wb,
+            a.right_reach * wa + b.right_reach * wb};
+}
+
+double smoothstep(double a) {
+    a = std::clamp(a, 0.0, 1.0);
+    return a * a * (3.0 - 2.0 * a);
+}
+
+}  // namespace
+
+CurveProfile::CurveProfile(const std::vector<CurveWidget>& widgets, double length) : widgets_(widgets), length_(length) {
+    std::stable_sort(widgets_.begin(), widgets_.end(), [](const CurveWidget& a, const CurveWidget& b) { return a.t < b.t; });
+    const size_t n = widgets_.size();
+    for (const CurveWidget& w : widgets_) values_.push_back(valuesOf(w));
+    tangents_.assign(n, CurveProperties{});
+    // Catmull-Rom tangents over non-uniformly spaced widgets; the end widgets keep zero tangents.
+    for (size_t k = 1; k + 1 < n; ++k) {
+        const double span = widgets_[k + 1].t - widgets_[k - 1].t;
+        if (span > 1e-12) tangents_[k] = combine(values_[k + 1], 1.0 / span, values_[k - 1], -1.0 / span);
+    }
+}
+
+CurveProperties CurveProfile::widgetsAt(double t) const {
+    if (widgets_.empty()) return {};
+    CurveProperties p;
+    if (t <= widgets_.front().t) {
+        p = values_.front();
+    } else if (t >= widgets_.back().t) {
+        p = values_.back();
+    } else {
+        const size_t k = static_cast<size_t>(
+            std::upper_bound(widgets_.begin(), widgets_.end(), t, [](double v, const CurveWidget& w) { return v < w.t; }) -
+            widgets_.begin() - 1);
+        const double h = widgets_[k + 1].t - widgets_[k].t;
+        if (h <= 1e-12) {
+            p = values_[k + 1];
+        } else {
+            const double u = (t - widgets_[k].t) / h, u2 = u * u, u3 = u2 * u;
+            const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
+            p = combine(combine(values_[k], h00, tangents_[k], h10 * h), 1.0,
+                        combine(values_[k + 1], h01, tangents_[k + 1], h11 * h), 1.0);
+        }
+    }
+    p.left_reach = std::max(0.0, p.left_reach);
+    p.right_reach = std::max(0.0, p.right_reach);
+    return p;
+}
+
+CurveProperties CurveProfile::at(double s) const {
+    CurveProperties p = widgetsAt(t(s));
+    for (const JunctionPin& pin : pins_) {
+        const double w = junctionFalloff(std::abs(s - pin.s) / pin.blend_px);
+        if (w > 0.0) p.height += w * (pin.height - heightAt(pin.s));
+    }
+    return p;
+}
+
+bool CurveProfile::widgetNear(double s, double snap_px, double* height) const {
+    for (const CurveWidget& w : widgets_) {
+        if (std::abs(w.t * length_ - s) <= snap_px) {
+            *height = w.height_m;
+            return true;
+        }
+    }
+    return false;
+}
+
+CurveProperties capProperties(const CurveProperties& at_end, double leftness) {
+    const double w = smoothstep(leftness);
+    CurveProperties p = at_end;
+    p.left_gradient = p.right_gradient = at_end.right_gradient + (at_end.left_gradient - at_end.right_gradient) * w;
+    p.left_reach = p.right_reach = at_end.right_reach + (at_end.left_reach - at_end.right_reach) * w;
+    return p;
+}
+
+double junctionFalloff(double u) { return 1.0 - smoothstep(u); }
+
+}  // namespace terrasynth::synth

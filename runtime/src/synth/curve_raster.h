@@ -1,0 +1,24 @@
+// Private: one curve constraint rasterised into the blend sums of one level (Gain et al. 2015 s5.1).
+// accumulateCurves (curve_field.h) prepares the courses and junctions and calls this per curve.
+// Implemented in curve_raster.cpp.
+#pragma once
+
+#include <vector>
+
+#include "synth/curve_envelope.h"
+#include "synth/curve_geometry.h"
+#include "synth/curve_profile.h"
+#include "synth/synthesis_plan.h"
+
+namespace terrasynth::synth {
+
+// Smoothing parameters used for a level: jumps are arc-length differences of more than 3 level
+// pixels between grid neighbours; the smoothing window spans the localised envelope width.
+EnvelopeSmoothing envelopeSmoothingForLevel(int level, double max_reach_px);
+
+// Adds the curve's (b, b*h_t, b*d) to `sums` (3 floats per pixel of `region`), see curve_field.h.
+// `smooth` = false keeps the raw envelope d < reach(t(p)) of Figure 5a (for comparison in tests).
+void accumulateCurve(const CourseSamples& course, const CurveProfile& profile, int level, const LevelRegion& region,
+                     double meters_per_pixel0, bool smooth, std::vector<float>& sums);
+
+}  // namespace terrasynth::synth
