@@ -23,7 +23,7 @@ const std::array<float, kNeighbourhoodSize>& neighbourhoodWeights() {
     return weights;
 }
 
-NeighbourhoodFeatures extractNeighbourhoods(const Heightfield& level) {
+NeighbourhoodFeatures extractNeighbourhoods(const Heightfield& level, int threads) {
     const auto& w = neighbourhoodWeights();
     std::array<float, kNeighbourhoodSize> root{};
     for (int k = 0; k < kNeighbourhoodSize; ++k) root[k] = std::sqrt(w[k]);
@@ -32,20 +32,22 @@ NeighbourhoodFeatures extractNeighbourhoods(const Heightfield& level) {
     f.height = level.height;
     f.mean.resize(level.size());
     f.deviations.resize(level.size() * kNeighbourhoodSize);
-    for (int y = 0; y < level.height; ++y) {
-        for (int x = 0; x < level.width; ++x) {
-            float window[kNeighbourhoodSize];
-            double mean = 0.0;
-            for (int k = 0; k < kNeighbourhoodSize; ++k) {
-                window[k] = level.clamped(x + k % 5 - 2, y + k / 5 - 2);
-                mean += w[k] * window[k];
+    parallelRows(level.height, threads, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+            for (int x = 0; x < level.width; ++x) {
+                float window[kNeighbourhoodSize];
+                double mean = 0.0;
+                for (int k = 0; k < kNeighbourhoodSize; ++k) {
+                    window[k] = level.clamped(x + k % 5 - 2, y + k / 5 - 2);
+                    mean += w[k] * window[k];
+                }
+                const size_t i = static_cast<size_t>(y) * level.width + x;
+                f.mean[i] = static_cast<float>(mean);
+                float* d = &f.deviations[i * kNeighbourhoodSize];
+                for (int k = 0; k < kNeighbourhoodSize; ++k) d[k] = root[k] * static_cast<float>(window[k] - mean);
             }
-            const size_t i = static_cast<size_t>(y) * level.width + x;
-            f.mean[i] = static_cast<float>(mean);
-            float* d = &f.deviations[i * kNeighbourhoodSize];
-            for (int k = 0; k < kNeighbourhoodSize; ++k) d[k] = root[k] * static_cast<float>(window[k] - mean);
         }
-    }
+    });
     return f;
 }
 
@@ -128,17 +130,20 @@ PcaBasis fitPca(const std::vector<const NeighbourhoodFeatures*>& exemplars) {
     return basis;
 }
 
-std::vector<float> projectFeatures(const NeighbourhoodFeatures& features, const PcaBasis& basis, int modes) {
+std::vector<float> projectFeatures(const NeighbourhoodFeatures& features, const PcaBasis& basis, int modes,
+                                   int threads) {
     TERRASYNTH_REQUIRE(modes >= 1 && modes <= kMatchModes, "mode count");
     std::vector<float> out(features.mean.size() * modes);
-    for (size_t i = 0; i < features.mean.size(); ++i) {
-        const float* d = &features.deviations[i * kNeighbourhoodSize];
-        for (int m = 0; m < modes; ++m) {
-            float sum = 0.0f;
-            for (int k = 0; k < kNeighbourhoodSize; ++k) sum += basis.axes[m][k] * d[k];
-            out[i * modes + m] = sum;
+    parallelRows(features.height, threads, [&](int y0, int y1) {
+        for (size_t i = static_cast<size_t>(y0) * features.width; i < static_cast<size_t>(y1) * features.width; ++i) {
+            const float* d = &features.deviations[i * kNeighbourhoodSize];
+            for (int m = 0; m < modes; ++m) {
+                float sum = 0.0f;
+                for (int k = 0; k < kNeighbourhoodSize; ++k) sum += basis.axes[m][k] * d[k];
+                out[i * modes + m] = sum;
+            }
         }
-    }
+    });
     return out;
 }
 

@@ -60,14 +60,21 @@ void assignTypes(const std::vector<Exemplar>& exemplars, ExemplarDatabase& datab
 std::vector<uint8_t> typeLevel(const std::vector<uint8_t>& base, int base_w, int base_h, int level, int w, int h) {
     std::vector<uint8_t> out(static_cast<size_t>(w) * h);
     const int block = 1 << level;
-    int counts[256];
+    int counts[256] = {};
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            std::fill(std::begin(counts), std::end(counts), 0);
+            int best = 255;  // no pixel in the block (cannot happen for in-range levels): type 0 below
+            for (int by = y * block; by < std::min(base_h, (y + 1) * block); ++by)
+                for (int bx = x * block; bx < std::min(base_w, (x + 1) * block); ++bx) {
+                    const uint8_t t = base[static_cast<size_t>(by) * base_w + bx];
+                    ++counts[t];
+                    if (best == 255 || counts[t] > counts[best] || (counts[t] == counts[best] && t < best)) best = t;
+                }
+            // Reset only what this block touched (clearing all 256 counters per pixel dominated).
             for (int by = y * block; by < std::min(base_h, (y + 1) * block); ++by)
                 for (int bx = x * block; bx < std::min(base_w, (x + 1) * block); ++bx)
-                    ++counts[base[static_cast<size_t>(by) * base_w + bx]];
-            out[static_cast<size_t>(y) * w + x] = static_cast<uint8_t>(std::max_element(counts, counts + 255) - counts);
+                    counts[base[static_cast<size_t>(by) * base_w + bx]] = 0;
+            out[static_cast<size_t>(y) * w + x] = static_cast<uint8_t>(best == 255 ? 0 : best);
         }
     return out;
 }
@@ -83,7 +90,9 @@ struct LevelInputs {
     std::vector<std::vector<uint8_t>> types;
 };
 
-void buildLevel(int level, LevelInputs& in, const DatabaseBuildOptions& options, DatabaseLevel& out) {
+// `coarser` is level + 1 when already built: its matches, carried down, start PatchMatch here.
+void buildLevel(int level, LevelInputs& in, const DatabaseBuildOptions& options, const DatabaseLevel* coarser,
+                DatabaseLevel& out) {
     const size_t count = in.fields.size();
     std::vector<const db::NeighbourhoodFeatures*> usable;
     for (const auto& f : in.features)
@@ -110,7 +119,7 @@ void buildLevel(int level, LevelInputs& in, const DatabaseBuildOptions& options,
     std::vector<std::vector<float>> projections(count);
     for (size_t e = 0; e < count; ++e) {
         if (in.features[e].mean.empty()) continue;
-        projections[e] = db::projectFeatures(in.features[e], basis, kMatchModes);
+        projections[e] = db::projectFeatures(in.features[e], basis, kMatchModes, options.threads);
         for (float m : in.features[e].mean) lo = std::min(lo, m), hi = std::max(hi, m);
         for (size_t i = 0; i < in.features[e].mean.size(); ++i)
             for (int m = 1; m < 4; ++m) extent[m] = std::max(extent[m], std::fabs(projections[e][i * kMatchModes + m - 1]));
@@ -152,6 +161,11 @@ void buildLevel(int level, LevelInputs& in, const DatabaseBuildOptions& options,
         if (out.type[a] == kNoType) match_exemplar[a] = kNoExemplar;
     db::PatchMatchInput pm{out.width, out.height, kMatchModes, match_features.data(), match_exemplar.data(),
                            eligible.data(), 0x51u + static_cast<uint32_t>(level)};
+    std::vector<uint32_t> prior;
+    if (coarser) {
+        prior = db::upsampleMatches(*coarser, out.rects, out.width, out.height);
+        pm.initial = prior.data();
+    }
     out.similar = db::patchMatch(pm, options.patchmatch_iterations, options.threads);
 
     // Per-type seed coordinates (s5.2 "randomly preselect and store a list of coordinates").
@@ -238,25 +252,33 @@ Result<std::shared_ptr<ExemplarDatabase>> buildFromExemplars(std::vector<Exempla
 
     std::vector<std::vector<Heightfield>> pyramids;
     for (const Exemplar& ex : exemplars) pyramids.push_back(db::buildGaussianPyramid(ex.field, options.levels));
-    for (int level = 0; level <= options.levels; ++level) {
-        LevelInputs in;
+    auto present = [&](size_t e, int level) {
+        return level < static_cast<int>(pyramids[e].size()) && pyramids[e][level].width > 2 * kInteriorMargin &&
+               pyramids[e][level].height > 2 * kInteriorMargin;
+    };
+    // The pyramid stops below the first level where every exemplar is too small.
+    int level_count = 0;
+    while (level_count <= options.levels) {
         bool any = false;
+        for (size_t e = 0; e < exemplars.size(); ++e) any = any || present(e, level_count);
+        if (!any) break;
+        ++level_count;
+    }
+    // Coarsest first, so each level's PatchMatch starts from the matches of the level above.
+    database->levels.resize(level_count);
+    for (int level = level_count - 1; level >= 0; --level) {
+        LevelInputs in;
         for (size_t e = 0; e < exemplars.size(); ++e) {
-            const bool present = level < static_cast<int>(pyramids[e].size()) &&
-                                 pyramids[e][level].width > 2 * kInteriorMargin &&
-                                 pyramids[e][level].height > 2 * kInteriorMargin;
-            in.fields.push_back(present ? pyramids[e][level] : Heightfield());
-            in.features.push_back(present ? db::extractNeighbourhoods(pyramids[e][level]) : db::NeighbourhoodFeatures());
-            in.types.push_back(present ? typeLevel(base_types[e], exemplars[e].field.width, exemplars[e].field.height,
-                                                   level, pyramids[e][level].width, pyramids[e][level].height)
-                                       : std::vector<uint8_t>());
-            any = any || present;
+            const bool present_here = present(e, level);
+            in.fields.push_back(present_here ? pyramids[e][level] : Heightfield());
+            in.features.push_back(present_here ? db::extractNeighbourhoods(pyramids[e][level], options.threads) : db::NeighbourhoodFeatures());
+            in.types.push_back(present_here ? typeLevel(base_types[e], exemplars[e].field.width, exemplars[e].field.height,
+                                                        level, pyramids[e][level].width, pyramids[e][level].height)
+                                            : std::vector<uint8_t>());
         }
-        if (!any) break;  // every exemplar is too small for this level: the pyramid stops here
-        DatabaseLevel built;
-        buildLevel(level, in, options, built);
-        database->levels.push_back(std::move(built));
-        report(options, "level " + std::to_string(level), double(level + 1) / (options.levels + 1));
+        const DatabaseLevel* coarser = level + 1 < level_count ? &database->levels[level + 1] : nullptr;
+        buildLevel(level, in, options, coarser, database->levels[level]);
+        report(options, "level " + std::to_string(level), double(level_count - level) / level_count);
     }
     return database;
 }

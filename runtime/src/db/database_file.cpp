@@ -211,7 +211,11 @@ Result<std::shared_ptr<const ExemplarDatabase>> loadDatabase(const std::string& 
 }
 
 Result<uint64_t> digestInputs(const std::vector<std::string>& inputs, const DatabaseBuildOptions& options) {
+    // The builder revision changes whenever the algorithm builds different tables from the same
+    // inputs (e.g. a better PatchMatch), so caches built by older code are rebuilt, not reused.
+    constexpr uint32_t kBuilderRevision = 2;
     uint64_t h = fnv1a(reinterpret_cast<const char*>(&ExemplarDatabase::kFormatVersion), 4);
+    h = fnv1a(reinterpret_cast<const char*>(&kBuilderRevision), 4, h);
     const double shape[3] = {static_cast<double>(options.levels), options.meters_per_pixel,
                              static_cast<double>(options.patchmatch_iterations)};
     h = fnv1a(reinterpret_cast<const char*>(shape), sizeof(shape), h);

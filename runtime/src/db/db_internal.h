@@ -28,7 +28,8 @@ struct NeighbourhoodFeatures {
     std::vector<float> mean;        // width*height
     std::vector<float> deviations;  // width*height*25
 };
-NeighbourhoodFeatures extractNeighbourhoods(const Heightfield& level);
+// Rows are split over `threads` (0 = hardware); the result does not depend on it.
+NeighbourhoodFeatures extractNeighbourhoods(const Heightfield& level, int threads = 0);
 // The Gaussian weights of the 5x5 window (sum 1), row-major.
 const std::array<float, kNeighbourhoodSize>& neighbourhoodWeights();
 
@@ -39,7 +40,8 @@ struct PcaBasis {
 };
 PcaBasis fitPca(const std::vector<const NeighbourhoodFeatures*>& exemplars);
 // Projects every pixel's deviations onto the first `modes` axes: width*height*modes floats.
-std::vector<float> projectFeatures(const NeighbourhoodFeatures& features, const PcaBasis& basis, int modes);
+std::vector<float> projectFeatures(const NeighbourhoodFeatures& features, const PcaBasis& basis, int modes,
+                                   int threads = 0);
 
 // Shelf packing of exemplar rectangles with kAtlasGutter pixels around each.
 struct AtlasLayout {
@@ -50,16 +52,26 @@ AtlasLayout packAtlas(const std::vector<std::pair<int, int>>& sizes);
 
 // PatchMatch (Barnes et al. 2009) over per-pixel feature vectors of an atlas: for each pixel of an
 // exemplar, the most similar *eligible* pixel: eligible[q] true, and q in another exemplar or at
-// least kSimilarSeparation away (Chebyshev). Jacobi-style iterations (every pixel reads the previous
-// iteration's field) make the result independent of the thread count.
+// least kSimilarSeparation away (Chebyshev). Initialised from random-projection trees (and
+// `initial` when given); rows are swept in fixed bands that read each other's previous-iteration
+// field, so the result is independent of the thread count. dims must be 1..kMatchModes.
 struct PatchMatchInput {
     int width = 0, height = 0, dims = 0;
     const float* features = nullptr;      // width*height*dims
     const uint8_t* exemplar = nullptr;    // per pixel, kNoExemplar outside exemplars
     const uint8_t* eligible = nullptr;    // per pixel: may be a match
     uint32_t salt = 0;                    // varies the random choices (e.g. by level)
+    // Optional starting guess per pixel (e.g. the coarser level's matches carried down by
+    // upsampleMatches); entries that are not acceptable matches, or UINT32_MAX, are ignored.
+    const uint32_t* initial = nullptr;
 };
 std::vector<uint32_t> patchMatch(const PatchMatchInput& input, int iterations, int threads);
+// The matches of a coarser level carried down to the next finer one (coarse-to-fine
+// initialisation): fine pixel (x, y) of exemplar e looks up coarse pixel (x/2, y/2) of e, whose match
+// (u, v) in exemplar e' becomes (2u + x%2, 2v + y%2) in e' at the fine level. UINT32_MAX where
+// there is no guess.
+std::vector<uint32_t> upsampleMatches(const DatabaseLevel& coarse, const std::vector<AtlasRect>& fine_rects,
+                                      int fine_width, int fine_height);
 // Exhaustive search with the same rules, for tests.
 std::vector<uint32_t> bruteForceMatch(const PatchMatchInput& input);
 float featureDistance(const PatchMatchInput& input, uint32_t a, uint32_t b);
