@@ -108,6 +108,27 @@ TEST(Constraints, PaintedPixelsDrawFromThePaintedType) {
     EXPECT_GE(static_cast<double>(matching) / painted, 0.95);
 }
 
+TEST(Constraints, FreezeKeepsTheSeedTerrainAndPastesLandExactly) {
+    ASSERT_TRUE(test::defaultDatabase());
+    const std::string dir = test::scratchDir("constraints_freeze_paste");
+    const auto free = synthesize(writeProject(dir, "{}"));
+    // A point constraint whose reach covers a frozen stroke, and a paste of the Rockies exemplar.
+    const auto shaped = synthesize(writeProject(
+        dir, "{\"points\": [{\"x\": 200, \"y\": 200, \"height_m\": " + std::to_string(free.heights.at(200, 200) + 800) +
+                 ", \"radius_px\": 120}], \"freeze\": {\"strokes\": [{\"radius_px\": 12, \"points\": [[150, 150], [250, 150]]}]}, "
+                 "\"pastes\": [{\"exemplar\": \"orom_rockies\", \"source\": [[100, 100], [160, 100], [160, 150], [100, 150]], "
+                 "\"target\": [380, 380], \"height_offset_m\": 50}]}"));
+    for (int x = 152; x <= 248; ++x) ASSERT_EQ(shaped.heights.at(x, 150), free.heights.at(x, 150)) << "frozen pixel " << x;
+    EXPECT_GT(shaped.heights.at(200, 200), free.heights.at(200, 200) + 300.0f);
+    const DatabaseLevel& l0 = test::defaultDatabase()->levels[0];
+    const int rockies = 3;
+    const AtlasRect& r = l0.rects[rockies];
+    for (int y = 385; y < 425; ++y)
+        for (int x = 385; x < 435; ++x)
+            ASSERT_NEAR(shaped.heights.at(x, y), l0.height_m[static_cast<size_t>(r.y + y - 280) * l0.width + r.x + x - 280] + 50.0f,
+                        1e-3f);
+}
+
 TEST(Constraints, MalformedEntriesNameTheField) {
     ASSERT_TRUE(test::defaultDatabase());
     const std::string dir = test::scratchDir("constraints_errors");

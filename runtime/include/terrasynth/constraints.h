@@ -67,11 +67,26 @@ struct TypePaint {
     bool empty() const { return types.empty(); }
 };
 
+// Copy-paste (s5.3, fig. 8): the polygon `source` (level-0 pixels of the terrain's grid, or of
+// exemplar `exemplar` when >= 0) moved by (dx, dy) and raised by `height_offset_m`, then frozen.
+struct PasteConstraint {
+    std::vector<std::pair<double, double>> source;
+    int exemplar = -1;
+    double dx = 0.0, dy = 0.0;
+    float height_offset_m = 0.0f;
+};
+
 struct SynthesisConstraints {
     std::vector<PointConstraint> points;
     std::vector<CurveConstraint> curves;
     TypePaint types;
-    bool empty() const { return points.empty() && curves.empty() && types.empty(); }
+    // Not used by the correction kernel itself but by whoever drives coherent re-synthesis
+    // (terrasynth/incremental.h, Terrain): the freeze brush (1 = frozen, over `freeze` rectangle)
+    // and pastes, applied in order.
+    TypePaint freeze;
+    std::vector<PasteConstraint> pastes;
+    bool empty() const { return points.empty() && curves.empty() && types.empty() && freeze.empty() && pastes.empty(); }
+    bool shapesTerrain() const { return !points.empty() || !curves.empty() || !types.empty(); }
 };
 
 // Parses the "constraints" object of a project (docs/project-format.md) against the database's type

@@ -33,13 +33,11 @@ public:
     // or of exemplar `exemplar` when >= 0) is moved by (dx, dy) pixels and raised by
     // `height_offset_m`. The pasted coordinates are written for every level and pass and frozen, and
     // a Free band of kCoherentBand pixels around the target lets the surroundings blend in.
-    struct Paste {
-        std::vector<std::pair<double, double>> source;
-        int exemplar = -1;
-        double dx = 0.0, dy = 0.0;
-        float height_offset_m = 0.0f;
-    };
+    using Paste = PasteConstraint;
     Status paste(const Paste& paste);
+    // Freeze brush: marks level-0 pixels (global grid, mask value != 0 and != TypePaint::kUnpainted)
+    // frozen for every later update and paste.
+    void freeze(const TypePaint& mask);
     // Level-0 pixels frozen so far by pastes (and kept frozen by later updates).
     const std::vector<uint8_t>& frozenMask() const { return frozen_; }
 

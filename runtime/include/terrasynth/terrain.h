@@ -44,8 +44,10 @@ private:
     Terrain(Project project, std::shared_ptr<const ExemplarDatabase> db, TerrainOptions options)
         : project_(std::move(project)), db_(std::move(db)), options_(std::move(options)) {}
     Result<Synthesizer*> synthesizerForThisThread();
-    // The layer stack's change to the synthesized extent (level 0, row-major), computed once.
-    Result<const std::vector<float>*> layerEdit();
+    // How freeze, pastes and layers change the synthesized extent (level 0, row-major), computed once.
+    bool hasExtentEdit() const;
+    Result<Heightfield> shapedExtent(Synthesizer& synthesizer);
+    Result<const std::vector<float>*> extentEdit();
 
     Project project_;
     std::shared_ptr<const ExemplarDatabase> db_;

@@ -1,11 +1,13 @@
 // Terrain: a project ready for height queries. Synthesis is a pure function of the global pixel
-// (windowed), and the project's layer stack (Bradbury et al. 2014) acts inside the project's extent
-// as a cached height *difference*: window = synthesis(window) + edit(window), where the edit is zero
-// outside the extent and box-averaged for coarser levels, so tiles stay seamless at every level.
+// (windowed). Edits that need the whole extent (freeze and pastes, s5.3; the layer stack of Bradbury
+// et al. 2014) act inside the project's extent as a cached height *difference*:
+// window = synthesis(window) + edit(window), where the edit is zero outside the extent and
+// box-averaged for coarser levels, so tiles stay seamless at every level.
 #include "terrasynth/terrain.h"
 
 #include <cmath>
 
+#include "terrasynth/incremental.h"
 #include "terrasynth/layers.h"
 
 namespace terrasynth {
@@ -54,24 +56,63 @@ Result<Synthesizer*> Terrain::synthesizerForThisThread() {
     return slot.get();
 }
 
-Result<const std::vector<float>*> Terrain::layerEdit() {
+bool Terrain::hasExtentEdit() const {
+    const auto& c = project_.synthesis.constraints;
+    return !project_.layers.empty() || (c && (!c->freeze.empty() || !c->pastes.empty()));
+}
+
+// The extent as the user shaped it: synthesis with constraints, then (s5.3) the freeze brush and
+// pastes through coherent re-synthesis, then the layer stack.
+Result<Heightfield> Terrain::shapedExtent(Synthesizer& synthesizer) {
+    const auto& c = project_.synthesis.constraints;
+    if (!c || (c->freeze.empty() && c->pastes.empty())) {
+        auto out = synthesizer.synthesize(extent(), project_.synthesis, 0, false);
+        if (!out) return out.status();
+        return std::move(out->heights);
+    }
+    // Frozen pixels keep the terrain the seed alone makes; constraints act everywhere else.
+    SynthesisParams plain = project_.synthesis;
+    plain.constraints.reset();
+    auto incremental = IncrementalTerrain::create(synthesizer, extent(), plain);
+    if (!incremental) return incremental.status();
+    incremental->freeze(c->freeze);
+    if (c->shapesTerrain()) {
+        auto shaping = std::make_shared<SynthesisConstraints>(*c);
+        shaping->freeze = TypePaint();
+        shaping->pastes.clear();
+        Status s = incremental->update(shaping, extent());
+        if (!s) return s;
+    }
+    for (size_t i = 0; i < c->pastes.size(); ++i) {
+        Status s = incremental->paste(c->pastes[i]);
+        if (!s) return s.withContext(project_.path + ": constraints.pastes[" + std::to_string(i) + "]");
+    }
+    return incremental->heights();
+}
+
+Result<const std::vector<float>*> Terrain::extentEdit() {
     std::lock_guard<std::mutex> lock(edit_mutex_);
     if (edit_ready_) return &edit_;
-    const std::string dir = project_.path.find('/') == std::string::npos
-                                ? std::string(".")
-                                : project_.path.substr(0, project_.path.find_last_of('/'));
-    auto stack = parseLayerStack(project_.layers, dir);
-    if (!stack) return stack.status().withContext(project_.path);
     auto synthesizer = synthesizerForThisThread();
     if (!synthesizer) return synthesizer.status();
-    auto base = synthesizer.value()->synthesize(extent(), project_.synthesis, 0, false);
-    if (!base) return base.status();
-    auto layered = applyLayerStack(stack.value(), base->heights);
-    if (!layered) return layered.status().withContext(project_.path);
-    if (layered->width != base->heights.width || layered->height != base->heights.height)
-        return Status::error(project_.path + ": layer stack changed the terrain size");
-    edit_.resize(base->heights.size());
-    for (size_t i = 0; i < edit_.size(); ++i) edit_[i] = layered->heights[i] - base->heights.heights[i];
+    auto shaped = shapedExtent(*synthesizer.value());
+    if (!shaped) return shaped.status();
+    if (!project_.layers.empty()) {
+        const std::string dir = project_.path.find('/') == std::string::npos
+                                    ? std::string(".")
+                                    : project_.path.substr(0, project_.path.find_last_of('/'));
+        auto stack = parseLayerStack(project_.layers, dir);
+        if (!stack) return stack.status().withContext(project_.path);
+        auto layered = applyLayerStack(stack.value(), shaped.value());
+        if (!layered) return layered.status().withContext(project_.path);
+        if (layered->width != shaped->width || layered->height != shaped->height)
+            return Status::error(project_.path + ": layer stack changed the terrain size");
+        shaped = std::move(layered.value());
+    }
+    auto plain = synthesizer.value()->synthesize(extent(), project_.synthesis, 0, false);
+    if (!plain) return plain.status();
+    edit_.resize(plain->heights.size());
+    for (size_t i = 0; i < edit_.size(); ++i) edit_[i] = shaped->heights[i] - plain->heights.heights[i];
     edit_ready_ = true;
     return &edit_;
 }
@@ -80,8 +121,8 @@ Result<SynthesisOutput> Terrain::synthesize(const PixelWindow& window, int level
     auto synthesizer = synthesizerForThisThread();
     if (!synthesizer) return synthesizer.status();
     auto out = synthesizer.value()->synthesize(window, project_.synthesis, level, want_sources);
-    if (!out || project_.layers.empty()) return out;
-    auto edit = layerEdit();
+    if (!out || !hasExtentEdit()) return out;
+    auto edit = extentEdit();
     if (!edit) return edit.status();
     // Add the edit, box-averaged over the 2^level x 2^level block of extent pixels of each sample.
     const int64_t block = int64_t(1) << level;

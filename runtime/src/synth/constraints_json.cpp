@@ -184,6 +184,82 @@ Status parseTypes(const json& types, const std::string& base_dir, const Exemplar
     return Status::ok();
 }
 
+// The freeze brush: an 8-bit mask PNG of the project's size (non-zero = frozen) and/or strokes.
+Status parseFreeze(const json& freeze, const std::string& base_dir, SynthesisConstraints& out, int64_t ox, int64_t oy,
+                   int w, int h) {
+    if (!freeze.is_object()) return Status::error("constraints.freeze: must be an object");
+    TypePaint& mask = out.freeze;
+    mask.x = ox, mask.y = oy, mask.width = w, mask.height = h;
+    mask.types.assign(static_cast<size_t>(w) * h, 0);
+    if (auto m = freeze.find("mask"); m != freeze.end()) {
+        if (!m->is_string()) return Status::error("constraints.freeze.mask: must be a PNG path");
+        const std::string path = m->get<std::string>().front() == '/' ? m->get<std::string>() : base_dir + "/" + m->get<std::string>();
+        auto image = readPng8(path);
+        if (!image) return image.status().withContext("constraints.freeze.mask");
+        if (image->width != w || image->height != h || image->channels != 1)
+            return Status::error("constraints.freeze.mask: " + path + " must be 8-bit gray of the project size");
+        for (size_t i = 0; i < mask.types.size(); ++i) mask.types[i] = image->samples[i] ? 1 : 0;
+    }
+    if (auto strokes = freeze.find("strokes"); strokes != freeze.end()) {
+        if (!strokes->is_array()) return Status::error("constraints.freeze.strokes: must be an array");
+        for (size_t i = 0; i < strokes->size(); ++i) {
+            const std::string path = "constraints.freeze.strokes[" + std::to_string(i) + "]";
+            const json& s = (*strokes)[i];
+            auto radius = number(s, "radius_px", path, 0.5, 1e5, 16.0);
+            if (!radius) return radius.status();
+            auto points = s.find("points");
+            if (points == s.end() || !points->is_array() || points->empty())
+                return Status::error(path + ".points: must be a non-empty array of [x, y]");
+            std::vector<std::pair<double, double>> line;
+            for (const json& p : *points) {
+                if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+                    return Status::error(path + ".points: each point must be [x, y]");
+                line.emplace_back(p[0].get<double>(), p[1].get<double>());
+            }
+            paintStroke(mask, line, radius.value(), 1);
+        }
+    }
+    return Status::ok();
+}
+
+Status parsePastes(const json& pastes, const ExemplarDatabase& db, SynthesisConstraints& out, int64_t ox, int64_t oy) {
+    if (!pastes.is_array()) return Status::error("constraints.pastes: must be an array");
+    for (size_t i = 0; i < pastes.size(); ++i) {
+        const std::string path = "constraints.pastes[" + std::to_string(i) + "]";
+        const json& p = pastes[i];
+        if (!p.is_object()) return Status::error(path + ": must be an object");
+        PasteConstraint paste;
+        if (auto e = p.find("exemplar"); e != p.end()) {
+            if (!e->is_string()) return Status::error(path + ".exemplar: must be an exemplar name");
+            for (size_t k = 0; k < db.exemplars.size(); ++k)
+                if (db.exemplars[k].name == e->get<std::string>()) paste.exemplar = static_cast<int>(k);
+            if (paste.exemplar < 0) return Status::error(path + ".exemplar: no exemplar named \"" + e->get<std::string>() + "\"");
+        }
+        auto source = p.find("source");
+        if (source == p.end() || !source->is_array() || source->size() < 3)
+            return Status::error(path + ".source: must be a polygon of at least 3 points [x, y]");
+        for (const json& q : *source) {
+            if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+                return Status::error(path + ".source: each point must be [x, y]");
+            // Exemplar sources are in exemplar pixels; terrain sources in project pixels.
+            const double sx = q[0].get<double>() + (paste.exemplar < 0 ? ox : 0);
+            const double sy = q[1].get<double>() + (paste.exemplar < 0 ? oy : 0);
+            paste.source.emplace_back(sx, sy);
+        }
+        auto target = p.find("target");
+        if (target == p.end() || !target->is_array() || target->size() != 2 || !(*target)[0].is_number() ||
+            !(*target)[1].is_number())
+            return Status::error(path + ".target: must be [x, y], where the source's first point lands");
+        paste.dx = ox + (*target)[0].get<double>() - paste.source[0].first;
+        paste.dy = oy + (*target)[1].get<double>() - paste.source[0].second;
+        auto offset = number(p, "height_offset_m", path, -12000, 12000, 0.0);
+        if (!offset) return offset.status();
+        paste.height_offset_m = static_cast<float>(offset.value());
+        out.pastes.push_back(std::move(paste));
+    }
+    return Status::ok();
+}
+
 }  // namespace
 
 Result<SynthesisConstraints> parseConstraints(const json& c, const std::string& base_dir, const ExemplarDatabase& db,
@@ -192,8 +268,9 @@ Result<SynthesisConstraints> parseConstraints(const json& c, const std::string& 
     if (c.is_null()) return out;
     if (!c.is_object()) return Status::error("constraints: must be an object");
     for (auto it = c.begin(); it != c.end(); ++it)
-        if (it.key() != "points" && it.key() != "types" && it.key() != "curves")
-            return Status::error("constraints." + it.key() + ": not supported (points, curves and types are)");
+        if (it.key() != "points" && it.key() != "types" && it.key() != "curves" && it.key() != "freeze" &&
+            it.key() != "pastes")
+            return Status::error("constraints." + it.key() + ": not supported (points, curves, types, freeze, pastes are)");
     if (auto p = c.find("points"); p != c.end()) {
         Status s = parsePoints(*p, out, ox, oy);
         if (!s) return s;
@@ -204,6 +281,14 @@ Result<SynthesisConstraints> parseConstraints(const json& c, const std::string& 
     }
     if (auto t = c.find("types"); t != c.end()) {
         Status s = parseTypes(*t, base_dir, db, out, ox, oy, w, h);
+        if (!s) return s;
+    }
+    if (auto f = c.find("freeze"); f != c.end()) {
+        Status s = parseFreeze(*f, base_dir, out, ox, oy, w, h);
+        if (!s) return s;
+    }
+    if (auto p = c.find("pastes"); p != c.end()) {
+        Status s = parsePastes(*p, db, out, ox, oy);
         if (!s) return s;
     }
     return out;

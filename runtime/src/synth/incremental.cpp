@@ -120,6 +120,17 @@ bool insidePolygon(const std::vector<std::pair<double, double>>& poly, double x,
 
 }  // namespace
 
+void IncrementalTerrain::freeze(const TypePaint& mask) {
+    if (frozen_.empty()) frozen_.assign(static_cast<size_t>(extent_.width) * extent_.height, 0);
+    for (int y = 0; y < mask.height; ++y)
+        for (int x = 0; x < mask.width; ++x) {
+            const uint8_t v = mask.types[static_cast<size_t>(y) * mask.width + x];
+            const int64_t ex = mask.x + x - extent_.x, ey = mask.y + y - extent_.y;
+            if (v == 0 || v == TypePaint::kUnpainted || ex < 0 || ey < 0 || ex >= extent_.width || ey >= extent_.height) continue;
+            frozen_[static_cast<size_t>(ey) * extent_.width + ex] = 1;
+        }
+}
+
 Status IncrementalTerrain::paste(const Paste& paste) {
     if (paste.source.size() < 3) return Status::error("paste: the source polygon needs at least 3 points");
     const ExemplarDatabase& db = synthesizer_->database();
