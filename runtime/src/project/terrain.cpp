@@ -12,6 +12,14 @@
 
 namespace terrasynth {
 
+namespace {
+// Relative paths inside a project are relative to its folder.
+std::string projectFolder(const Project& project) {
+    return project.path.find('/') == std::string::npos ? std::string(".")
+                                                        : project.path.substr(0, project.path.find_last_of('/'));
+}
+}  // namespace
+
 Result<std::shared_ptr<Terrain>> Terrain::open(const std::string& project_path, const TerrainOptions& options) {
     auto project = loadProject(project_path);
     if (!project) return project.status();
@@ -20,18 +28,12 @@ Result<std::shared_ptr<Terrain>> Terrain::open(const std::string& project_path, 
 
 Result<std::shared_ptr<Terrain>> Terrain::fromProject(Project project, const TerrainOptions& options) {
     if (!project.layers.empty()) {
-        const std::string dir = project.path.find('/') == std::string::npos
-                                    ? std::string(".")
-                                    : project.path.substr(0, project.path.find_last_of('/'));
-        auto stack = parseLayerStack(project.layers, dir);
+        auto stack = parseLayerStack(project.layers, projectFolder(project));
         if (!stack) return stack.status().withContext(project.path);
     }
     auto db = openProjectDatabase(project, options.database);
     if (!db) return db.status();
-    const std::string base_dir = project.path.find('/') == std::string::npos
-                                     ? std::string(".")
-                                     : project.path.substr(0, project.path.find_last_of('/'));
-    auto constraints = parseConstraints(project.constraints, base_dir, *db.value(), project.origin_x, project.origin_y,
+    auto constraints = parseConstraints(project.constraints, projectFolder(project), *db.value(), project.origin_x, project.origin_y,
                                         project.width, project.height);
     if (!constraints) return constraints.status().withContext(project.path);
     if (!constraints->empty())
@@ -98,10 +100,7 @@ Result<const std::vector<float>*> Terrain::extentEdit() {
     auto shaped = shapedExtent(*synthesizer.value());
     if (!shaped) return shaped.status();
     if (!project_.layers.empty()) {
-        const std::string dir = project_.path.find('/') == std::string::npos
-                                    ? std::string(".")
-                                    : project_.path.substr(0, project_.path.find_last_of('/'));
-        auto stack = parseLayerStack(project_.layers, dir);
+        auto stack = parseLayerStack(project_.layers, projectFolder(project_));
         if (!stack) return stack.status().withContext(project_.path);
         auto layered = applyLayerStack(stack.value(), shaped.value());
         if (!layered) return layered.status().withContext(project_.path);

@@ -64,6 +64,52 @@ Status parsePoints(const json& points, SynthesisConstraints& out, int64_t ox, in
     return Status::ok();
 }
 
+// Paints a round brush of `radius` pixels along each segment of a stroke.
+void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius, uint8_t type) {
+    auto dab = [&](double cx, double cy) {
+        for (int y = static_cast<int>(std::floor(cy - radius)); y <= static_cast<int>(std::ceil(cy + radius)); ++y)
+            for (int x = static_cast<int>(std::floor(cx - radius)); x <= static_cast<int>(std::ceil(cx + radius)); ++x)
+                if (x >= 0 && y >= 0 && x < paint.width && y < paint.height && (x - cx) * (x - cx) + (y - cy) * (y - cy) <= radius * radius)
+                    paint.types[static_cast<size_t>(y) * paint.width + x] = type;
+    };
+    for (size_t i = 0; i < line.size(); ++i) {
+        if (i == 0) dab(line[0].first, line[0].second);
+        if (i == 0) continue;
+        const double dx = line[i].first - line[i - 1].first, dy = line[i].second - line[i - 1].second;
+        const int steps = std::max(1, static_cast<int>(std::ceil(std::hypot(dx, dy) / std::max(0.5, radius * 0.5))));
+        for (int s = 1; s <= steps; ++s) dab(line[i - 1].first + dx * s / steps, line[i - 1].second + dy * s / steps);
+    }
+}
+
+// A list of [x, y] points (at least `minimum`), offset by (ox, oy). The error names `path`.
+Result<std::vector<std::pair<double, double>>> readPoints(const json& list, const std::string& path, size_t minimum,
+                                                          double ox = 0.0, double oy = 0.0) {
+    if (!list.is_array() || list.size() < minimum)
+        return Status::error(path + ": must be an array of at least " + std::to_string(minimum) + " points [x, y]");
+    std::vector<std::pair<double, double>> points;
+    for (const json& p : list) {
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+            return Status::error(path + ": each point must be [x, y]");
+        points.emplace_back(ox + p[0].get<double>(), oy + p[1].get<double>());
+    }
+    return points;
+}
+
+// One brush stroke {"radius_px": r, "points": [[x, y], ...]} painted with `value`.
+Status paintStrokeJson(const json& stroke, const std::string& path, uint8_t value, TypePaint& paint) {
+    if (!stroke.is_object()) return Status::error(path + ": must be an object");
+    auto radius = number(stroke, "radius_px", path, 0.5, 1e5, 16.0);
+    if (!radius) return radius.status();
+    auto line = readPoints(stroke.value("points", json()), path + ".points", 1);
+    if (!line) return line.status();
+    paintStroke(paint, line.value(), radius.value(), value);
+    return Status::ok();
+}
+
+std::string resolvePath(const std::string& base_dir, const std::string& name) {
+    return !name.empty() && name.front() == '/' ? name : base_dir + "/" + name;
+}
+
 Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, int64_t oy) {
     if (!curves.is_array()) return Status::error("constraints.curves: must be an array");
     for (size_t i = 0; i < curves.size(); ++i) {
@@ -71,14 +117,9 @@ Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, in
         const json& c = curves[i];
         if (!c.is_object()) return Status::error(path + ": must be an object");
         CurveConstraint curve;
-        auto course = c.find("course");
-        if (course == c.end() || !course->is_array() || course->size() < 2)
-            return Status::error(path + ".course: must be at least 2 points [x, y]");
-        for (const json& p : *course) {
-            if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
-                return Status::error(path + ".course: each point must be [x, y]");
-            curve.course.emplace_back(ox + p[0].get<double>(), oy + p[1].get<double>());
-        }
+        auto course = readPoints(c.value("course", json()), path + ".course", 2, static_cast<double>(ox), static_cast<double>(oy));
+        if (!course) return course.status();
+        curve.course = std::move(course.value());
         if (auto spline = c.find("spline"); spline != c.end()) {
             if (!spline->is_boolean()) return Status::error(path + ".spline: must be true or false");
             curve.spline = spline->get<bool>();
@@ -110,22 +151,6 @@ Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, in
     return Status::ok();
 }
 
-// Paints a round brush of `radius` pixels along each segment of a stroke.
-void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius, uint8_t type) {
-    auto dab = [&](double cx, double cy) {
-        for (int y = static_cast<int>(std::floor(cy - radius)); y <= static_cast<int>(std::ceil(cy + radius)); ++y)
-            for (int x = static_cast<int>(std::floor(cx - radius)); x <= static_cast<int>(std::ceil(cx + radius)); ++x)
-                if (x >= 0 && y >= 0 && x < paint.width && y < paint.height && (x - cx) * (x - cx) + (y - cy) * (y - cy) <= radius * radius)
-                    paint.types[static_cast<size_t>(y) * paint.width + x] = type;
-    };
-    for (size_t i = 0; i < line.size(); ++i) {
-        if (i == 0) dab(line[0].first, line[0].second);
-        if (i == 0) continue;
-        const double dx = line[i].first - line[i - 1].first, dy = line[i].second - line[i - 1].second;
-        const int steps = std::max(1, static_cast<int>(std::ceil(std::hypot(dx, dy) / std::max(0.5, radius * 0.5))));
-        for (int s = 1; s <= steps; ++s) dab(line[i - 1].first + dx * s / steps, line[i - 1].second + dy * s / steps);
-    }
-}
 
 Status parseTypes(const json& types, const std::string& base_dir, const ExemplarDatabase& db, SynthesisConstraints& out,
                   int64_t ox, int64_t oy, int w, int h) {
@@ -135,8 +160,7 @@ Status parseTypes(const json& types, const std::string& base_dir, const Exemplar
     paint.types.assign(static_cast<size_t>(w) * h, TypePaint::kUnpainted);
     if (auto mask = types.find("mask"); mask != types.end()) {
         if (!mask->is_string()) return Status::error("constraints.types.mask: must be a PNG path");
-        const std::string path = mask->get<std::string>().front() == '/' ? mask->get<std::string>()
-                                                                          : base_dir + "/" + mask->get<std::string>();
+        const std::string path = resolvePath(base_dir, mask->get<std::string>());
         auto image = readPng8(path);
         if (!image) return image.status().withContext("constraints.types.mask");
         if (image->width != w || image->height != h || image->channels != 1)
@@ -161,22 +185,11 @@ Status parseTypes(const json& types, const std::string& base_dir, const Exemplar
         if (!strokes->is_array()) return Status::error("constraints.types.strokes: must be an array");
         for (size_t i = 0; i < strokes->size(); ++i) {
             const std::string path = "constraints.types.strokes[" + std::to_string(i) + "]";
-            const json& s = (*strokes)[i];
-            if (!s.is_object()) return Status::error(path + ": must be an object");
-            auto type = typeByName(db, s.value("type", json()), path + ".type");
+            const json& stroke = (*strokes)[i];
+            auto type = typeByName(db, stroke.is_object() ? stroke.value("type", json()) : json(), path + ".type");
             if (!type) return type.status();
-            auto radius = number(s, "radius_px", path, 0.5, 1e5, 16.0);
-            if (!radius) return radius.status();
-            auto points = s.find("points");
-            if (points == s.end() || !points->is_array() || points->empty())
-                return Status::error(path + ".points: must be a non-empty array of [x, y]");
-            std::vector<std::pair<double, double>> line;
-            for (const json& p : *points) {
-                if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
-                    return Status::error(path + ".points: each point must be [x, y]");
-                line.emplace_back(p[0].get<double>(), p[1].get<double>());
-            }
-            paintStroke(paint, line, radius.value(), type.value());
+            Status painted = paintStrokeJson(stroke, path, type.value(), paint);
+            if (!painted) return painted;
         }
     }
     if (db.type_names.size() > static_cast<size_t>(kMaxPaintableTypes))
@@ -193,7 +206,7 @@ Status parseFreeze(const json& freeze, const std::string& base_dir, SynthesisCon
     mask.types.assign(static_cast<size_t>(w) * h, 0);
     if (auto m = freeze.find("mask"); m != freeze.end()) {
         if (!m->is_string()) return Status::error("constraints.freeze.mask: must be a PNG path");
-        const std::string path = m->get<std::string>().front() == '/' ? m->get<std::string>() : base_dir + "/" + m->get<std::string>();
+        const std::string path = resolvePath(base_dir, m->get<std::string>());
         auto image = readPng8(path);
         if (!image) return image.status().withContext("constraints.freeze.mask");
         if (image->width != w || image->height != h || image->channels != 1)
@@ -203,20 +216,8 @@ Status parseFreeze(const json& freeze, const std::string& base_dir, SynthesisCon
     if (auto strokes = freeze.find("strokes"); strokes != freeze.end()) {
         if (!strokes->is_array()) return Status::error("constraints.freeze.strokes: must be an array");
         for (size_t i = 0; i < strokes->size(); ++i) {
-            const std::string path = "constraints.freeze.strokes[" + std::to_string(i) + "]";
-            const json& s = (*strokes)[i];
-            auto radius = number(s, "radius_px", path, 0.5, 1e5, 16.0);
-            if (!radius) return radius.status();
-            auto points = s.find("points");
-            if (points == s.end() || !points->is_array() || points->empty())
-                return Status::error(path + ".points: must be a non-empty array of [x, y]");
-            std::vector<std::pair<double, double>> line;
-            for (const json& p : *points) {
-                if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
-                    return Status::error(path + ".points: each point must be [x, y]");
-                line.emplace_back(p[0].get<double>(), p[1].get<double>());
-            }
-            paintStroke(mask, line, radius.value(), 1);
+            Status painted = paintStrokeJson((*strokes)[i], "constraints.freeze.strokes[" + std::to_string(i) + "]", 1, mask);
+            if (!painted) return painted;
         }
     }
     return Status::ok();
@@ -235,17 +236,11 @@ Status parsePastes(const json& pastes, const ExemplarDatabase& db, SynthesisCons
                 if (db.exemplars[k].name == e->get<std::string>()) paste.exemplar = static_cast<int>(k);
             if (paste.exemplar < 0) return Status::error(path + ".exemplar: no exemplar named \"" + e->get<std::string>() + "\"");
         }
-        auto source = p.find("source");
-        if (source == p.end() || !source->is_array() || source->size() < 3)
-            return Status::error(path + ".source: must be a polygon of at least 3 points [x, y]");
-        for (const json& q : *source) {
-            if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
-                return Status::error(path + ".source: each point must be [x, y]");
-            // Exemplar sources are in exemplar pixels; terrain sources in project pixels.
-            const double sx = q[0].get<double>() + (paste.exemplar < 0 ? ox : 0);
-            const double sy = q[1].get<double>() + (paste.exemplar < 0 ? oy : 0);
-            paste.source.emplace_back(sx, sy);
-        }
+        // Exemplar sources are in exemplar pixels; terrain sources in project pixels.
+        const bool from_terrain = paste.exemplar < 0;
+        auto source = readPoints(p.value("source", json()), path + ".source", 3, from_terrain ? ox : 0, from_terrain ? oy : 0);
+        if (!source) return source.status();
+        paste.source = std::move(source.value());
         auto target = p.find("target");
         if (target == p.end() || !target->is_array() || target->size() != 2 || !(*target)[0].is_number() ||
             !(*target)[1].is_number())
