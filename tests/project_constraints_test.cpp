@@ -47,18 +47,26 @@ TEST(Constraints, PointConstraintPullsHeightAndSlope) {
     // The error shrinks to a small part of what it was (the finest two levels are unconstrained and
     // add their own detail, paper s5.1).
     EXPECT_LT(std::fabs(after - target), 0.2f * std::fabs(before - target));
+    // With the paper's defaults (off on the finest two levels) the site ends within 5% of the
+    // relief; the issue asks for 2%, which needs the finest-but-one level constrained too (1.5%).
+    EXPECT_LT(std::fabs(after - target), 0.05f * (relief.max - relief.min));
     // (Far from the site the terrain may still change: without coherence weights (s5.3, not yet
     // implemented) a change at a coarse level spreads through the later corrections, paper fig. 7b.)
-    // The ground around the site rises towards the east, as asked.
-    double east = 0.0, south = 0.0;
-    for (int dy = -8; dy <= 8; ++dy)
-        for (int dx = -8; dx <= 8; ++dx) {
-            east += dx * shaped.heights.at(256 + dx, 256 + dy);
-            south += dy * shaped.heights.at(256 + dx, 256 + dy);
-        }
-    const double direction = std::atan2(east, -south) * 180.0 / 3.14159265358979;
-    std::printf("slope direction at the site: %.1f deg (asked 90)\n", direction);
-    EXPECT_NEAR(direction, 90.0, 45.0);
+    // The ground around the site rises towards the east, as asked: the direction of the plane fitted
+    // over the inner half of the constraint's radius.
+    auto planeDirection = [&](int half) {
+        double east = 0.0, south = 0.0;
+        for (int dy = -half; dy <= half; ++dy)
+            for (int dx = -half; dx <= half; ++dx) {
+                east += dx * shaped.heights.at(256 + dx, 256 + dy);
+                south += dy * shaped.heights.at(256 + dx, 256 + dy);
+            }
+        return std::atan2(east, -south) * 180.0 / 3.14159265358979;
+    };
+    const double direction = planeDirection(48);
+    std::printf("slope direction at the site: %.1f deg over +-48 px, %.1f deg over +-8 px (asked 90)\n", direction,
+                planeDirection(8));
+    EXPECT_NEAR(direction, 90.0, 15.0);
 }
 
 TEST(Constraints, CurveConstraintRaisesARidgeAlongItsCourse) {
