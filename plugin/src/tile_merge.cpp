@@ -13,6 +13,17 @@ namespace terrasynth::plugin {
 namespace {
 constexpr size_t kMergeHistory = 4096;
 constexpr unsigned kReleaseDelayFrames = 3;  // a draw thread may still hold last frame's tiles
+
+// Takes over a finished build's scene node and what culling and eviction need to know of it.
+template <class Tile>
+void adoptBuild(Tile& tile, const TileBuild& build) {
+    tile.node = build.node;
+    tile.box = build.box;
+    tile.min_height = build.min_height;
+    tile.max_height = build.max_height;
+    tile.hash = build.heights_hash;
+    tile.bytes = build.bytes;
+}
 }  // namespace
 
 void TerrainNode::update(unsigned frame) {
@@ -101,24 +112,14 @@ void TerrainNode::attach(TileBuild&& build) {
         replaceChild(tile.node.get(), build.node.get());
         released_.emplace_back(cull_frame_, tile.node);
         resident_bytes_ = resident_bytes_ - tile.bytes + build.bytes;
-        tile.node = build.node;
-        tile.box = build.box;
-        tile.min_height = build.min_height;
-        tile.max_height = build.max_height;
-        tile.hash = build.heights_hash;
-        tile.bytes = build.bytes;
+        adoptBuild(tile, build);
         ++stats_.tiles_swapped;
         ++stats_.tiles_merged;
         return;
     }
     Tile tile;
-    tile.node = build.node;
-    tile.box = build.box;
-    tile.min_height = build.min_height;
-    tile.max_height = build.max_height;
-    tile.hash = build.heights_hash;
+    adoptBuild(tile, build);
     tile.generation = build.generation;
-    tile.bytes = build.bytes;
     tile.last_used_frame = cull_frame_ == ~0u ? 0 : cull_frame_;
     resident_bytes_ += tile.bytes;
     tiles_.emplace(build.key, std::move(tile));

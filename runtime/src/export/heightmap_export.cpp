@@ -2,22 +2,14 @@
 #include <algorithm>
 #include <cctype>
 
+#include "core/sidecar.h"
 #include "export/geotiff_writer.h"
 #include "terrasynth/gltf_export.h"
 #include "terrasynth/heightfield_io.h"
 
 namespace terrasynth {
 
-namespace {
-std::string lowerExtension(const std::string& path) {
-    const size_t dot = path.find_last_of('.');
-    const size_t slash = path.find_last_of('/');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-    std::string ext = path.substr(dot);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return ext;
-}
-}  // namespace
+using detail::lowerExtension;
 
 Status exportHeightmap(const std::string& path, const Heightfield& field, double origin_x_m, double origin_y_m) {
     if (Status s = validateHeightfield(field); !s) return s.withContext(path);
