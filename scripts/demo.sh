@@ -11,6 +11,6 @@ mkdir -p out "$POCL_CACHE_DIR"
 build/bin/terrasynth db build data/exemplars -o out/default.tsdb
 build/bin/terrasynth synth data/default.tsyn -o out/terrain.png --preview out/terrain_hillshade.png \
   --sources out/terrain_sources.png
-build/bin/terrasynth stats out/terrain.png --vs data/exemplars/orom_rockies.png
+build/bin/terrasynth stats out/terrain.png
 build/bin/terrasynth export data/default.tsyn -o out/terrain.glb --lods 3
 echo "demo: results in out/ (terrain.png + .json, terrain_hillshade.png, terrain_sources.png, terrain.glb)"
