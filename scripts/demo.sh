@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # README command (a): install dependencies, build, and run the main job on the shipped default
 # exemplars: build the exemplar database, synthesize a 1024x1024 terrain, write heightmap, hillshade
-# and coordinate map to out/, print realism statistics against an exemplar, export a glTF.
+# and coordinate map to out/, print its realism statistics, export a glTF. The database is written
+# where the default project keeps its cache, so the project reuses it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl_cache}"
 mkdir -p out "$POCL_CACHE_DIR"
-build/bin/terrasynth db build data/exemplars -o out/default.tsdb
+build/bin/terrasynth db build data/exemplars -o data/default.tsdb
 build/bin/terrasynth synth data/default.tsyn -o out/terrain.png --preview out/terrain_hillshade.png \
   --sources out/terrain_sources.png
 build/bin/terrasynth stats out/terrain.png
