@@ -73,6 +73,9 @@ public:
             TS_CL_CHECK_NAMED(err, std::string("clCreateKernel(") + name + ")");
         }
         localSize(local_);
+        auto placeholder = upload(nullptr, 0);
+        if (!placeholder) return placeholder.status();
+        placeholder_ = std::move(placeholder.value());
         return uploadDatabase();
     }
 
@@ -91,8 +94,13 @@ public:
 
 private:
     Result<BufferHandle> upload(const void* data, size_t bytes) {
-        // Empty arrays still get a small buffer so every kernel argument is a valid object.
+        // Empty arrays (no constraints, no history: the usual case per level and pass) share one
+        // small buffer, so every kernel argument is a valid object without an allocation per call.
         static const float kPlaceholder[8] = {};
+        if (bytes == 0 && placeholder_) {
+            TS_CL_CHECK(clRetainMemObject(placeholder_.get()));
+            return BufferHandle(placeholder_.get());
+        }
         if (bytes == 0) data = kPlaceholder, bytes = sizeof(kPlaceholder);
         cl_int err = CL_SUCCESS;
         BufferHandle buffer(clCreateBuffer(context_.get(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes,
@@ -298,6 +306,7 @@ private:
     KernelHandle init_, upsample_, correct_, resolve_;
     std::vector<DeviceLevel> levels_;
     BufferHandle current_, next_;
+    BufferHandle placeholder_;
     BufferHandle blend_, target_sets_, prev_index_, prev_v_, coherence_;
     bool has_coherence_ = false;
     cl_int use_prev_ = 0;
