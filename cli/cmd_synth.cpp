@@ -56,7 +56,15 @@ Status writeSourcesMap(const std::string& path, const SynthesisOutput& out, cons
     return writePng16(path, h.width, h.height, 3, rgb);
 }
 
+bool endsWith(const std::string& text, const std::string& suffix) {
+    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 void runSynth(const SynthArgs& args) {
+    // Refuse an unwritable output format before spending time on synthesis.
+    if (!endsWith(args.output, ".png") && !endsWith(args.output, ".f32") && !endsWith(args.output, ".raw") &&
+        !endsWith(args.output, ".exr"))
+        return fail("synth", args.output + ": unknown heightmap extension (use .png, .f32, .raw or .exr)");
     Project project;
     if (!args.project.empty()) {
         auto loaded = loadProject(args.project);
