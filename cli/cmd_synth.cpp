@@ -1,5 +1,7 @@
 // terrasynth synth <project.tsyn | --db db.tsdb> -o out.png|out.f32|out.exr [--size WxH] [--origin X,Y]
 //                  [--seed N] [--level L] [--sources src.png] [--preview hillshade.png] [--backend opencl|reference]
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 
@@ -56,7 +58,9 @@ Status writeSourcesMap(const std::string& path, const SynthesisOutput& out, cons
     return writePng16(path, h.width, h.height, 3, rgb);
 }
 
-bool endsWith(const std::string& text, const std::string& suffix) {
+// Case-insensitive, as the heightmap writers are.
+bool endsWith(std::string text, const std::string& suffix) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
     return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
