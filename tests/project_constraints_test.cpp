@@ -13,11 +13,12 @@ namespace {
 
 constexpr int kSize = 512;
 
-std::string writeProject(const std::string& dir, const std::string& constraints) {
+std::string writeProject(const std::string& dir, const std::string& constraints, const std::string& synthesis_extra = "") {
     // The project uses the shared default database the other tests build.
     const std::string path = dir + "/world.tsyn";
-    std::ofstream(path) << "{\"database\": \"" << test::defaultDatabasePath() << "\", \"size\": [" << kSize
-                        << ", " << kSize << "], \"synthesis\": {\"seed\": 1}, \"constraints\": " << constraints << "}";
+    std::ofstream(path) << "{\"database\": \"" << test::defaultDatabasePath() << "\", \"size\": [" << kSize << ", "
+                        << kSize << "], \"synthesis\": {\"seed\": 1" << synthesis_extra
+                        << "}, \"constraints\": " << constraints << "}";
     return path;
 }
 
@@ -67,6 +68,21 @@ TEST(Constraints, PointConstraintPullsHeightAndSlope) {
     std::printf("slope direction at the site: %.1f deg over +-48 px, %.1f deg over +-8 px (asked 90)\n", direction,
                 planeDirection(8));
     EXPECT_NEAR(direction, 90.0, 15.0);
+}
+
+TEST(Constraints, ConstrainingTheFinestButOneLevelHoldsPointsWithinTwoPercent) {
+    ASSERT_TRUE(test::defaultDatabase());
+    const std::string dir = test::scratchDir("constraints_point_level1");
+    const auto free = synthesize(writeProject(dir, "{}"));
+    const float target = free.heights.at(256, 256) + 900.0f;
+    const std::string point = "{\"points\": [{\"x\": 256, \"y\": 256, \"height_m\": " + std::to_string(target) +
+                              ", \"slope_direction_deg\": 90, \"slope_angle_deg\": 15, \"radius_px\": 96}]}";
+    const auto tight = synthesize(writeProject(dir, point, ", \"first_constrained_level\": 1"));
+    const HeightRange relief = heightRange(tight.heights);
+    const float error = std::fabs(tight.heights.at(256, 256) - target);
+    std::printf("first constrained level 1: site %.1f m from the target, %.2f%% of the relief\n", error,
+                100.0f * error / (relief.max - relief.min));
+    EXPECT_LT(error, 0.02f * (relief.max - relief.min));
 }
 
 TEST(Constraints, CurveConstraintRaisesARidgeAlongItsCourse) {

@@ -58,6 +58,10 @@ struct SynthesisParams {
     int coarsest_level = -1;
     // Point and type constraints (paper s5); null = none. Shared, immutable while synthesizing.
     std::shared_ptr<const SynthesisConstraints> constraints;
+    // Finest level on which constraints act. The paper disables them on the finest two levels
+    // (default 2) so they do not look intrusive; 1 holds point heights tighter (measured: 1.5% of the
+    // relief instead of 3.8% for a 900 m raise).
+    int first_constrained_level = kFirstConstrainedLevel;
     // Coherence (s5.3): the previous results are offered as an extra candidate whose cost is
     // multiplied by W; frozen pixels keep their previous S and V exactly. With unchanged inputs the
     // result is bit-identical to the previous one. `coherence` null = Coherent everywhere.

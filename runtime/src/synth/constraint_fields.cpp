@@ -37,10 +37,10 @@ void accumulatePoint(const PointConstraint& point, int level, const LevelRegion&
     }
 }
 
-LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, const LevelRegion& region,
-                                     double meters_per_pixel0) {
+LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
+                                     const LevelRegion& region, double meters_per_pixel0) {
     LevelConstraints out;
-    if (!constraints || level < kFirstConstrainedLevel) return out;
+    if (!constraints || level < first_level) return out;
     if (!constraints->points.empty() || !constraints->curves.empty()) {
         out.blend.assign(region.pixels() * 4, 0.0f);
         for (const PointConstraint& p : constraints->points)

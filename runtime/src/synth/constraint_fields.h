@@ -24,8 +24,9 @@ struct LevelConstraints {
     std::vector<uint32_t> target_sets;
 };
 
-LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, const LevelRegion& region,
-                                     double meters_per_pixel0);
+// Nothing below `first_level` (SynthesisParams::first_constrained_level).
+LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
+                                     const LevelRegion& region, double meters_per_pixel0);
 
 // Adds (sign +1) or removes (-1) one point constraint's terms to/from 4-float blend sums of `region`.
 void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,

@@ -25,6 +25,8 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
                              std::to_string(window.height));
     if (std::llabs(window.x) > kMaxGlobalCoordinate || std::llabs(window.y) > kMaxGlobalCoordinate)
         return Status::error("window origin beyond +-2^29 pixels");
+    if (params.first_constrained_level < 0 || params.first_constrained_level > 12)
+        return Status::error("first_constrained_level must be 0..12");
     if (params.constraints) {
         for (size_t i = 0; i < params.constraints->points.size(); ++i) {
             const PointConstraint& p = params.constraints->points[i];
@@ -52,7 +54,8 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
     auto correctLevel = [&](int level) -> Status {
         const LevelRegion& region = plan.regions[level];
         Status begun = steps.beginLevel(
-            level, region, constraintsForLevel(params.constraints.get(), level, region, db.meters_per_pixel),
+            level, region,
+            constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, region, db.meters_per_pixel),
             params.previous ? coherenceCodes(params.coherence.get(), level, region) : std::vector<uint8_t>(),
             params.seed);
         if (!begun) return begun;
