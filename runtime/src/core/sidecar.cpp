@@ -53,6 +53,28 @@ Result<double> requireNumber(const nlohmann::json& j, const char* key, const std
     return v;
 }
 
+std::string compactNumber(double v) {
+    std::string s = std::to_string(v);
+    while (s.find('.') != std::string::npos && (s.back() == '0' || s.back() == '.')) {
+        const bool dot = s.back() == '.';
+        s.pop_back();
+        if (dot) break;
+    }
+    return s;
+}
+
+Result<std::optional<double>> readNumberInRange(const nlohmann::json& object, const char* key,
+                                                const std::string& field, double lo, double hi) {
+    auto it = object.find(key);
+    if (it == object.end()) return std::optional<double>();
+    if (!it->is_number()) return Status::error(field + ": must be a number");
+    const double v = it->get<double>();
+    if (!std::isfinite(v) || v < lo || v > hi)
+        return Status::error(field + ": must be in [" + compactNumber(lo) + ", " + compactNumber(hi) + "], got " +
+                             compactNumber(v));
+    return std::optional<double>(v);
+}
+
 Status readSpacing(const nlohmann::json& j, const std::string& file, double* x, double* y) {
     auto it = j.find("meters_per_pixel");
     if (it == j.end()) return Status::error(file + ": missing field \"meters_per_pixel\"");

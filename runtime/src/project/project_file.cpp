@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/sidecar.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/project.h"
 
@@ -28,19 +29,17 @@ public:
     FieldReader(const std::string& file) : file_(file) {}
     bool ok() const { return status_.isOk(); }
     Status status() const { return status_; }
-    void fail(const std::string& field, const std::string& problem) {
-        if (status_.isOk()) status_ = Status::error(file_ + ": " + field + ": " + problem);
+    void fail(const std::string& field, const std::string& problem) { fail(field + ": " + problem); }
+    void fail(const std::string& message) {
+        if (status_.isOk()) status_ = Status::error(file_ + ": " + message);
     }
     template <class T>
     void number(const json& object, const char* key, const std::string& path, T* out, double lo, double hi) {
-        auto it = object.find(key);
-        if (it == object.end()) return;
-        if (!it->is_number()) return fail(path, "must be a number");
-        const double v = it->get<double>();
-        if (!std::isfinite(v) || v < lo || v > hi)
-            return fail(path, "must be in [" + trim(lo) + ", " + trim(hi) + "], got " + trim(v));
-        if (std::is_integral_v<T> && v != std::floor(v)) return fail(path, "must be a whole number");
-        *out = static_cast<T>(v);
+        auto v = detail::readNumberInRange(object, key, path, lo, hi);
+        if (!v) return fail(v.message());
+        if (!v.value()) return;
+        if (std::is_integral_v<T> && *v.value() != std::floor(*v.value())) return fail(path, "must be a whole number");
+        *out = static_cast<T>(*v.value());
     }
     void knownKeys(const json& object, const std::string& path, std::initializer_list<const char*> keys) {
         for (auto it = object.begin(); it != object.end(); ++it) {
@@ -51,15 +50,6 @@ public:
     }
 
 private:
-    static std::string trim(double v) {
-        std::string s = std::to_string(v);
-        while (s.find('.') != std::string::npos && (s.back() == '0' || s.back() == '.')) {
-            const bool dot = s.back() == '.';
-            s.pop_back();
-            if (dot) break;
-        }
-        return s;
-    }
     std::string file_;
     Status status_ = Status::ok();
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/sidecar.h"
 #include "terrasynth/constraints.h"
 #include "terrasynth/database.h"
 #include "terrasynth/heightfield_io.h"
@@ -13,18 +14,14 @@ namespace {
 
 using nlohmann::json;
 
+// A checked number field "<path>.<key>"; `fallback` when absent, else an error.
 Result<double> number(const json& object, const char* key, const std::string& path, double lo, double hi,
                       std::optional<double> fallback = std::nullopt) {
-    auto it = object.find(key);
-    if (it == object.end()) {
-        if (fallback) return *fallback;
-        return Status::error(path + "." + key + ": missing");
-    }
-    if (!it->is_number()) return Status::error(path + "." + key + ": must be a number");
-    const double v = it->get<double>();
-    if (!std::isfinite(v) || v < lo || v > hi)
-        return Status::error(path + "." + key + ": must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return v;
+    auto v = detail::readNumberInRange(object, key, path + "." + key, lo, hi);
+    if (!v) return v.status();
+    if (v.value()) return *v.value();
+    if (fallback) return *fallback;
+    return Status::error(path + "." + key + ": missing");
 }
 
 Result<uint8_t> typeByName(const ExemplarDatabase& db, const json& name, const std::string& path) {
