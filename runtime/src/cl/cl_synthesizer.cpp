@@ -283,19 +283,18 @@ private:
         if (!s) return s;
         TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), heights.get(), CL_FALSE, 0, pixels * sizeof(float),
                                         output.heights.heights.data(), 0, nullptr, nullptr));
+        std::vector<float> interleaved(want_sources ? pixels * 2 : 0);
         if (want_sources) {
-            std::vector<float> interleaved(pixels * 2);
             TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), sources.get(), CL_FALSE, 0, pixels * 2 * sizeof(float),
                                             interleaved.data(), 0, nullptr, nullptr));
             TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), exemplars.get(), CL_FALSE, 0, pixels,
                                             output.source_exemplar.data(), 0, nullptr, nullptr));
-            TS_CL_CHECK(clFinish(queue_.get()));
-            for (size_t i = 0; i < pixels; ++i) {
-                output.source_x[i] = interleaved[2 * i];
-                output.source_y[i] = interleaved[2 * i + 1];
-            }
         }
         TS_CL_CHECK(clFinish(queue_.get()));
+        for (size_t i = 0; i < interleaved.size() / 2; ++i) {
+            output.source_x[i] = interleaved[2 * i];
+            output.source_y[i] = interleaved[2 * i + 1];
+        }
         return Status::ok();
     }
 
