@@ -64,6 +64,23 @@ bool endsWith(std::string text, const std::string& suffix) {
     return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// How close each point constraint's site in the window came to its height (s5.1), so a user can
+// check a project from the command line.
+void reportPointSites(const Terrain& terrain, const PixelWindow& window, const Heightfield& heights) {
+    const auto& constraints = terrain.project().synthesis.constraints;
+    if (!constraints) return;
+    const HeightRange range = heightRange(heights);
+    for (size_t i = 0; i < constraints->points.size(); ++i) {
+        const PointConstraint& p = constraints->points[i];
+        const int64_t x = std::llround(p.x), y = std::llround(p.y);
+        if (x < window.x || y < window.y || x >= window.x + window.width || y >= window.y + window.height) continue;
+        const float h = heights.at(static_cast<int>(x - window.x), static_cast<int>(y - window.y));
+        std::printf("point %zu at (%lld, %lld): asked %.1f m, synthesized %.1f m (%.2f%% of the relief)\n", i,
+                    static_cast<long long>(x - terrain.project().origin_x), static_cast<long long>(y - terrain.project().origin_y),
+                    p.height_m, h, 100.0 * std::fabs(h - p.height_m) / std::max(1e-3f, range.max - range.min));
+    }
+}
+
 void runSynth(const SynthArgs& args) {
     // Refuse an unwritable output format before spending time on synthesis.
     if (!endsWith(args.output, ".png") && !endsWith(args.output, ".f32") && !endsWith(args.output, ".raw") &&
@@ -120,6 +137,7 @@ void runSynth(const SynthArgs& args) {
     std::printf("database + device ready in %.2f s, synthesis %.1f ms\n",
                 std::chrono::duration<double>(ready - start).count(),
                 std::chrono::duration<double, std::milli>(done - ready).count());
+    if (args.level == 0) reportPointSites(*terrain.value(), window, out->heights);
 }
 
 void addSynthCommand(CLI::App& app) {

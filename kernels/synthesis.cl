@@ -151,10 +151,9 @@ TS_INLINE float phi_d(float x, float d, float s, float lambda) {
 // pull the chosen height towards the blended target with phi_d.
 kernel void correct(global float4* state, Region region, int first_x, int first_y, int inset,
                     global const ushort4* appearance, global const uint2* similar, int width, float4 scale,
-                    float offset0,
                     global const uint* target_sets, int use_types, global const uchar* atlas_type,
                     global const uint* type_seeds, global const int2* seed_ranges, uint seed_salt,
-                    global const float4* blend, int use_blend, global const uint* prev_index,
+                    global const float4* blend, int use_blend, global const float* heights, global const uint* prev_index,
                     global const float* prev_v, global const uchar* coherence, int use_prev) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width - inset || ly >= region.height - inset) return;
@@ -253,7 +252,9 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
     if (use_blend) {
         const float4 sums = blend[ly * region.width + lx];  // sum b, sum b*h_t, sum b*d (s5.1)
         if (sums.x > 0.0f) {
-            const float candidate_height = offset0 + scale.x * convert_float(appearance[best_q].x) + v;
+            // h_c is the candidate's own height E(q) + V, not its neighbourhood mean (mode 0): on a
+            // peak the mean sits below the centre, and pulling the mean would overshoot the site.
+            const float candidate_height = heights[best_q] + v;
             v = v + phi_d(sums.y / sums.x - candidate_height, sums.z / sums.x, TOLERANCE_SLOPE, BLEND_SLOPE);
         }
     }

@@ -30,59 +30,100 @@ SynthesisOutput synthesize(const std::string& project) {
     return std::move(out.value());
 }
 
+std::string pointJson(double x, double y, float height, float direction, float angle, float radius) {
+    return "{\"x\": " + std::to_string(x) + ", \"y\": " + std::to_string(y) + ", \"height_m\": " +
+           std::to_string(height) + ", \"slope_direction_deg\": " + std::to_string(direction) +
+           ", \"slope_angle_deg\": " + std::to_string(angle) + ", \"radius_px\": " + std::to_string(radius) + "}";
+}
+
+// Direction (clockwise from north) in which the plane fitted over +-half pixels around (x, y) rises.
+double planeDirectionDeg(const Heightfield& h, int x, int y, int half) {
+    double east = 0.0, south = 0.0;
+    for (int dy = -half; dy <= half; ++dy)
+        for (int dx = -half; dx <= half; ++dx) {
+            east += dx * h.at(x + dx, y + dy);
+            south += dy * h.at(x + dx, y + dy);
+        }
+    return std::atan2(east, -south) * 180.0 / 3.14159265358979;
+}
+
+double angleBetweenDeg(double a, double b) { return std::fabs(std::remainder(a - b, 360.0)); }
+
 }  // namespace
 
-TEST(Constraints, PointConstraintPullsHeightAndSlope) {
+TEST(Constraints, PointConstraintHoldsHeightAndSlope) {
     ASSERT_TRUE(test::defaultDatabase());
     const std::string dir = test::scratchDir("constraints_point");
     const auto free = synthesize(writeProject(dir, "{}"));
     const float before = free.heights.at(256, 256);
     const float target = before + 900.0f;
-    const auto shaped = synthesize(writeProject(
-        dir, "{\"points\": [{\"x\": 256, \"y\": 256, \"height_m\": " + std::to_string(target) +
-                 ", \"slope_direction_deg\": 90, \"slope_angle_deg\": 15, \"radius_px\": 96}]}"));
+    const auto shaped = synthesize(writeProject(dir, "{\"points\": [" + pointJson(256, 256, target, 90, 15, 96) + "]}"));
     const float after = shaped.heights.at(256, 256);
     const HeightRange relief = heightRange(shaped.heights);
     std::printf("site: free %.1f m, target %.1f m, constrained %.1f m (terrain relief %.1f m)\n", before, target, after,
                 relief.max - relief.min);
-    // The error shrinks to a small part of what it was (the finest two levels are unconstrained and
-    // add their own detail, paper s5.1).
-    EXPECT_LT(std::fabs(after - target), 0.2f * std::fabs(before - target));
-    // With the paper's defaults (off on the finest two levels) the site ends within 5% of the
-    // relief; the issue asks for 2%, which needs the finest-but-one level constrained too (1.5%).
-    EXPECT_LT(std::fabs(after - target), 0.05f * (relief.max - relief.min));
-    // (Far from the site the terrain may still change: without coherence weights (s5.3, not yet
-    // implemented) a change at a coarse level spreads through the later corrections, paper fig. 7b.)
+    EXPECT_LT(std::fabs(after - target), 0.02f * (relief.max - relief.min));
     // The ground around the site rises towards the east, as asked: the direction of the plane fitted
     // over the inner half of the constraint's radius.
-    auto planeDirection = [&](int half) {
-        double east = 0.0, south = 0.0;
-        for (int dy = -half; dy <= half; ++dy)
-            for (int dx = -half; dx <= half; ++dx) {
-                east += dx * shaped.heights.at(256 + dx, 256 + dy);
-                south += dy * shaped.heights.at(256 + dx, 256 + dy);
-            }
-        return std::atan2(east, -south) * 180.0 / 3.14159265358979;
-    };
-    const double direction = planeDirection(48);
+    const double direction = planeDirectionDeg(shaped.heights, 256, 256, 48);
     std::printf("slope direction at the site: %.1f deg over +-48 px, %.1f deg over +-8 px (asked 90)\n", direction,
-                planeDirection(8));
-    EXPECT_NEAR(direction, 90.0, 15.0);
+                planeDirectionDeg(shaped.heights, 256, 256, 8));
+    EXPECT_LT(angleBetweenDeg(direction, 90.0), 15.0);
 }
 
-TEST(Constraints, ConstrainingTheFinestButOneLevelHoldsPointsWithinTwoPercent) {
+TEST(Constraints, PlainPaperTargetsPullInsideTheKernelsButLeaveTheFinestDetailFree) {
+    // hold_point_heights false: eq. 8-9 alone, off on the finest two levels (s5.1). The site moves
+    // most of the way, and what is left is the detail of the two free levels.
     ASSERT_TRUE(test::defaultDatabase());
-    const std::string dir = test::scratchDir("constraints_point_level1");
-    const auto free = synthesize(writeProject(dir, "{}"));
-    const float target = free.heights.at(256, 256) + 900.0f;
-    const std::string point = "{\"points\": [{\"x\": 256, \"y\": 256, \"height_m\": " + std::to_string(target) +
-                              ", \"slope_direction_deg\": 90, \"slope_angle_deg\": 15, \"radius_px\": 96}]}";
-    const auto tight = synthesize(writeProject(dir, point, ", \"first_constrained_level\": 1"));
-    const HeightRange relief = heightRange(tight.heights);
-    const float error = std::fabs(tight.heights.at(256, 256) - target);
-    std::printf("first constrained level 1: site %.1f m from the target, %.2f%% of the relief\n", error,
-                100.0f * error / (relief.max - relief.min));
-    EXPECT_LT(error, 0.02f * (relief.max - relief.min));
+    const std::string dir = test::scratchDir("constraints_point_plain");
+    const std::string plain = ", \"hold_point_heights\": false";
+    const auto free = synthesize(writeProject(dir, "{}", plain));
+    const float before = free.heights.at(256, 256), target = before + 900.0f;
+    const auto shaped = synthesize(writeProject(dir, "{\"points\": [" + pointJson(256, 256, target, 90, 15, 96) + "]}", plain));
+    const float after = shaped.heights.at(256, 256);
+    const HeightRange relief = heightRange(shaped.heights);
+    std::printf("plain targets: site %.1f m from the target, %.2f%% of the relief\n", std::fabs(after - target),
+                100.0f * std::fabs(after - target) / (relief.max - relief.min));
+    EXPECT_LT(std::fabs(after - target), 0.2f * std::fabs(before - target));
+    EXPECT_GT(std::fabs(after - target), 0.1f);  // nothing snapped the site after the fact
+}
+
+TEST(Constraints, PointHeightsHoldOnProjectsNeverSeenBefore) {
+    // Seeds, sites, raises, cuts, slopes and radii a test author did not tune for: every site within
+    // 2% of the terrain's relief and of the relief within its radius, and its slope direction within
+    // 15 degrees over the inner half of the radius.
+    ASSERT_TRUE(test::defaultDatabase());
+    const std::string dir = test::scratchDir("constraints_point_unseen");
+    struct Case { uint32_t seed; int x, y; float raise, direction, angle, radius; };
+    const Case cases[] = {{3, 150, 170, 700.0f, 30.0f, 12.0f, 80.0f},
+                          {19, 330, 300, -500.0f, 200.0f, 8.0f, 64.0f},
+                          {77, 260, 380, 400.0f, 300.0f, 20.0f, 110.0f}};
+    for (const Case& c : cases) {
+        const std::string free_project = dir + "/free.tsyn";
+        std::ofstream(free_project) << "{\"database\": \"" << test::defaultDatabasePath() << "\", \"size\": [" << kSize << ", "
+                                    << kSize << "], \"synthesis\": {\"seed\": " << c.seed << "}}";
+        const auto free = synthesize(free_project);
+        const float target = free.heights.at(c.x, c.y) + c.raise;
+        const std::string project = dir + "/shaped.tsyn";
+        std::ofstream(project) << "{\"database\": \"" << test::defaultDatabasePath() << "\", \"size\": [" << kSize << ", "
+                               << kSize << "], \"synthesis\": {\"seed\": " << c.seed << "}, \"constraints\": {\"points\": ["
+                               << pointJson(c.x, c.y, target, c.direction, c.angle, c.radius) << "]}}";
+        const auto shaped = synthesize(project);
+        const HeightRange relief = heightRange(shaped.heights);
+        float local_min = 1e9f, local_max = -1e9f;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                if (std::hypot(x - c.x, y - c.y) <= c.radius)
+                    local_min = std::min(local_min, shaped.heights.at(x, y)), local_max = std::max(local_max, shaped.heights.at(x, y));
+        const float error = std::fabs(shaped.heights.at(c.x, c.y) - target);
+        const double direction = planeDirectionDeg(shaped.heights, c.x, c.y, static_cast<int>(c.radius / 2));
+        std::printf("seed %u: site %.2f m off (%.3f%% of the relief, %.3f%% of the local relief), slope %.1f deg (asked %.0f)\n",
+                    c.seed, error, 100.0f * error / (relief.max - relief.min), 100.0f * error / (local_max - local_min),
+                    direction, c.direction);
+        EXPECT_LT(error, 0.02f * (relief.max - relief.min)) << "seed " << c.seed;
+        EXPECT_LT(error, 0.02f * (local_max - local_min)) << "seed " << c.seed;
+        EXPECT_LT(angleBetweenDeg(direction, c.direction), 15.0) << "seed " << c.seed;
+    }
 }
 
 TEST(Constraints, CurveConstraintRaisesARidgeAlongItsCourse) {
@@ -169,4 +210,11 @@ TEST(Constraints, MalformedEntriesNameTheField) {
         dir, "{\"curves\": [{\"course\": [[0, 0], [50, 10]], \"widgets\": [{\"t\": 2, \"height_m\": 10}]}]}"));
     ASSERT_FALSE(bad_widget);
     EXPECT_NE(bad_widget.message().find("constraints.curves[0].widgets[0].t"), std::string::npos) << bad_widget.message();
+    auto bad_hold = Terrain::open(writeProject(dir, "{}", ", \"hold_point_heights\": \"yes\""));
+    ASSERT_FALSE(bad_hold);
+    EXPECT_NE(bad_hold.message().find("synthesis.hold_point_heights: must be true or false"), std::string::npos)
+        << bad_hold.message();
+    auto bad_level = Terrain::open(writeProject(dir, "{}", ", \"first_constrained_level\": 13"));
+    ASSERT_FALSE(bad_level);
+    EXPECT_NE(bad_level.message().find("synthesis.first_constrained_level"), std::string::npos) << bad_level.message();
 }

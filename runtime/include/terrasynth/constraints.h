@@ -1,8 +1,9 @@
 // terrasynth/constraints.h: user control inside the synthesis (Gain et al. 2015 section 5).
 //
-// Implemented here: point constraints (s5.1, eq. 8-9) and type painting (s5.2). Both act inside the
-// correction kernel, never as a post-hoc deformation, and both are disabled on the finest two levels
-// as in the paper. Coordinates are global pixels of level 0 (the project's grid); heights in metres.
+// Point and curve constraints (s5.1, eq. 8-9) and type painting (s5.2) act inside the correction
+// kernel, never as a post-hoc deformation, and are disabled on the finest two levels as in the
+// paper; freeze and pastes (s5.3) are driven through coherent re-synthesis (incremental.h).
+// Coordinates are global pixels of level 0 (the project's grid); heights in metres.
 #pragma once
 
 #include <cstdint>
@@ -23,6 +24,10 @@ struct PointConstraint {
     float slope_direction_deg = 0.0f; // direction the ground rises towards, clockwise from north
     float slope_angle_deg = 0.0f;     // 0..80; the target plane rises at tan(angle) m per m
     float radius_px = 64.0f;          // area of effect, level-0 pixels (> 0)
+    // Metres added to the target on the constrained levels so the finished site lands on height_m
+    // although the finest levels are unconstrained (set by liftPointConstraints in synthesizer.h;
+    // not read from projects). 0 = the paper's plain target.
+    float lift_m = 0.0f;
 };
 
 // A widget on a curve constraint (s3, s5.1): properties at arc-length parameter t of the course.

@@ -28,6 +28,8 @@ public:
 
     // Applies new constraints. `changed` is the level-0 rectangle (global pixels) the change can
     // affect. Re-synthesizes the affected part and merges it into heights() and the history.
+    // Point constraints whose site lies in `changed` are lifted first (liftPointConstraints, with
+    // this update's coherence) so their sites land on their heights; see holdPointHeights.
     Status update(std::shared_ptr<const SynthesisConstraints> constraints, const PixelWindow& changed);
     // Copy-paste (s5.3, fig. 8): the polygon `source` (level-0 pixels of the terrain's global grid,
     // or of exemplar `exemplar` when >= 0) is moved by (dx, dy) pixels and raised by
@@ -40,6 +42,9 @@ public:
     void freeze(const TypePaint& mask);
     // Level-0 pixels frozen so far by pastes (and kept frozen by later updates).
     const std::vector<uint8_t>& frozenMask() const { return frozen_; }
+
+    // Whether update() lifts point constraints (default true); false = the paper's plain targets.
+    void holdPointHeights(bool hold) { hold_point_heights_ = hold; }
 
     // Pixels re-synthesized by the last update (output window only), for benchmarks.
     PixelWindow lastWindow() const { return last_window_; }
@@ -54,8 +59,9 @@ private:
     std::shared_ptr<SynthesisHistory> history_;
     PixelWindow last_window_;
     std::vector<uint8_t> frozen_;  // per extent pixel, 1 = frozen (pasted)
+    bool hold_point_heights_ = true;
     Status resynthesize(const PixelWindow& free_area, const std::vector<uint8_t>* free_mask,
-                        std::shared_ptr<const SynthesisConstraints> constraints);
+                        std::shared_ptr<const SynthesisConstraints> constraints, bool lift_points);
 };
 
 }  // namespace terrasynth

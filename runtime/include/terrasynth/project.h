@@ -25,6 +25,9 @@ struct Project {
     int width = 1024, height = 1024;       // terrain extent in pixels (the world itself is unbounded)
     int64_t origin_x = 0, origin_y = 0;    // global pixel of the extent's north-west corner
     SynthesisParams synthesis;
+    // synthesis.hold_point_heights: lift point constraints so finished sites land on their heights
+    // (liftPointConstraints in synthesizer.h). false = the paper's plain targets.
+    bool hold_point_heights = true;
     // Sections owned by other modules, kept verbatim so loading and saving never drops them.
     nlohmann::json constraints = nlohmann::json::object();
     nlohmann::json layers = nlohmann::json::array();

@@ -256,8 +256,8 @@ private:
         const DeviceLevel& d = levels_[level];
         ArgSetter args(correct_.get(), "correct");
         args(current_.get())(toArg(region))(first_x)(first_y)(cl_int(inset))(d.appearance.get())(d.candidates.get())(
-            d.width)(d.scale)(d.offset.s[0])(target_sets_.get())(use_types_)(d.types.get())(
-            d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_)(prev_index_.get())(
+            d.width)(d.scale)(target_sets_.get())(use_types_)(d.types.get())(
+            d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_)(d.heights.get())(prev_index_.get())(
             prev_v_.get())(coherence_.get())(use_prev_);
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);

@@ -115,13 +115,18 @@ Result<Project> parseProject(const std::string& text, const std::string& file, c
         if (!s->is_object()) {
             r.fail("synthesis", "must be an object");
         } else {
-            r.knownKeys(*s, "synthesis", {"seed", "jitter", "correction_passes", "coarsest_level", "first_constrained_level"});
+            r.knownKeys(*s, "synthesis", {"seed", "jitter", "correction_passes", "coarsest_level", "first_constrained_level",
+                                          "hold_point_heights"});
             r.number(*s, "seed", "synthesis.seed", &p.synthesis.seed, 0, 4294967295.0);
             r.number(*s, "jitter", "synthesis.jitter", &p.synthesis.jitter, 0, 1);
             r.number(*s, "correction_passes", "synthesis.correction_passes", &p.synthesis.correction_passes, 0, 4);
             r.number(*s, "coarsest_level", "synthesis.coarsest_level", &p.synthesis.coarsest_level, -1, 12);
             r.number(*s, "first_constrained_level", "synthesis.first_constrained_level",
                      &p.synthesis.first_constrained_level, 0, 12);
+            if (auto hold = s->find("hold_point_heights"); hold != s->end()) {
+                if (!hold->is_boolean()) r.fail("synthesis.hold_point_heights", "must be true or false");
+                else p.hold_point_heights = hold->get<bool>();
+            }
         }
     }
     if (auto c = j.find("constraints"); c != j.end()) {
@@ -155,7 +160,8 @@ std::string projectToJson(const Project& p) {
           {"jitter", p.synthesis.jitter},
           {"correction_passes", p.synthesis.correction_passes},
           {"coarsest_level", p.synthesis.coarsest_level},
-          {"first_constrained_level", p.synthesis.first_constrained_level}}},
+          {"first_constrained_level", p.synthesis.first_constrained_level},
+          {"hold_point_heights", p.hold_point_heights}}},
         {"constraints", p.constraints},
         {"layers", p.layers},
     };

@@ -42,6 +42,13 @@ Result<std::shared_ptr<Terrain>> Terrain::fromProject(Project project, const Ter
     // Fail early (missing OpenCL device, kernel build) rather than on the first tile.
     auto synthesizer = terrain->synthesizerForThisThread();
     if (!synthesizer) return synthesizer.status();
+    // Lifted once here, so every window and tile synthesizes with the same targets.
+    SynthesisParams& params = terrain->project_.synthesis;
+    if (terrain->project_.hold_point_heights && params.constraints && !params.constraints->points.empty()) {
+        auto lifted = liftPointConstraints(*synthesizer.value(), params);
+        if (!lifted) return lifted.status().withContext(terrain->project_.path + ": constraints.points");
+        params.constraints = std::move(lifted.value());
+    }
     return terrain;
 }
 
@@ -77,6 +84,7 @@ Result<Heightfield> Terrain::shapedExtent(Synthesizer& synthesizer) {
     plain.constraints.reset();
     auto incremental = IncrementalTerrain::create(synthesizer, extent(), plain);
     if (!incremental) return incremental.status();
+    incremental->holdPointHeights(project_.hold_point_heights);
     incremental->freeze(c->freeze);
     if (c->shapesTerrain()) {
         auto shaping = std::make_shared<SynthesisConstraints>(*c);

@@ -28,7 +28,7 @@ void accumulatePoint(const PointConstraint& point, int level, const LevelRegion&
             const double d = std::sqrt(ex * ex + ey * ey);
             if (d >= reach) continue;
             const double b = 1.0 / std::max(d, 0.5);
-            const double target = point.height_m + (rise_east * ex + rise_south * ey) * meters_per_pixel0;
+            const double target = point.height_m + point.lift_m + (rise_east * ex + rise_south * ey) * meters_per_pixel0;
             float* sums = &blend[(static_cast<size_t>(gy - region.y) * region.width + (gx - region.x)) * 4];
             sums[0] += sign * static_cast<float>(b);
             sums[1] += sign * static_cast<float>(b * target);

@@ -60,13 +60,13 @@ Result<IncrementalTerrain> IncrementalTerrain::create(Synthesizer& synthesizer, 
 }
 
 Status IncrementalTerrain::update(std::shared_ptr<const SynthesisConstraints> constraints, const PixelWindow& changed) {
-    return resynthesize(changed, nullptr, std::move(constraints));
+    return resynthesize(changed, nullptr, std::move(constraints), hold_point_heights_);
 }
 
 // Free inside `free_area` (or where `free_mask`, over the extent, is set), Coherent in a band around
 // it, Frozen beyond and wherever a paste froze the terrain; re-synthesizes that window only.
 Status IncrementalTerrain::resynthesize(const PixelWindow& free_area, const std::vector<uint8_t>* free_mask,
-                                        std::shared_ptr<const SynthesisConstraints> constraints) {
+                                        std::shared_ptr<const SynthesisConstraints> constraints, bool lift_points) {
     const PixelWindow band = grow(free_area, kCoherentBand);
     // Frozen pixels reached by the window's own margin (2 pixels per subpass at level 0) settle
     // the band's neighbourhoods exactly as a full synthesis would.
@@ -91,6 +91,13 @@ Status IncrementalTerrain::resynthesize(const PixelWindow& free_area, const std:
     params.constraints = std::move(constraints);
     params.previous = history_;
     params.coherence = map;
+    if (lift_points && params.constraints && !params.constraints->points.empty()) {
+        PointLiftOptions lift;
+        lift.sites_within = free_area;
+        auto lifted = liftPointConstraints(*synthesizer_, params, lift);
+        if (!lifted) return lifted.status();
+        params.constraints = std::move(lifted.value());
+    }
     params.record_history = true;
     auto out = synthesizer_->synthesize(window, params, 0, false);
     if (!out) return out.status();
@@ -188,7 +195,7 @@ Status IncrementalTerrain::paste(const Paste& paste) {
         for (int64_t x = box.x; x < box.x + box.width; ++x)
             if (insidePolygon(target, static_cast<double>(x), static_cast<double>(y)))
                 frozen_[static_cast<size_t>(y - extent_.y) * extent_.width + (x - extent_.x)] = 1;
-    return resynthesize(grow(box, kCoherentBand), nullptr, params_.constraints);
+    return resynthesize(grow(box, kCoherentBand), nullptr, params_.constraints, false);
 }
 
 }  // namespace terrasynth

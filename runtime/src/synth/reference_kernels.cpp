@@ -236,8 +236,8 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 // s5.1: the blended target of the constraints reaching this pixel.
                 const float* sums = &constraints.blend[(static_cast<size_t>(ly) * region.width + lx) * 4];
                 if (sums[0] > 0.0f) {
-                    const float candidate_height =
-                        db.appearance_offset[0] + scale[0] * static_cast<float>(db.appearance[static_cast<size_t>(best_q) * 4]) + v;
+                    // h_c = E(q) + V, the candidate's own height (see synthesis.cl).
+                    const float candidate_height = db.height_m[static_cast<size_t>(best_q)] + v;
                     v = v + phiD(sums[1] / sums[0] - candidate_height, sums[2] / sums[0], kPointToleranceSlope, kPointBlendSlope);
                 }
             }

@@ -30,9 +30,9 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
     if (params.constraints) {
         for (size_t i = 0; i < params.constraints->points.size(); ++i) {
             const PointConstraint& p = params.constraints->points[i];
-            if (!(p.radius_px > 0.0f) || !std::isfinite(p.height_m) || !(p.slope_angle_deg >= 0.0f && p.slope_angle_deg <= 80.0f))
+            if (!(p.radius_px > 0.0f) || !std::isfinite(p.height_m) || !std::isfinite(p.lift_m) || !(p.slope_angle_deg >= 0.0f && p.slope_angle_deg <= 80.0f))
                 return Status::error("point constraint " + std::to_string(i) +
-                                     ": radius must be > 0, height finite, slope angle 0..80 degrees");
+                                     ": radius must be > 0, height and lift finite, slope angle 0..80 degrees");
         }
         if (!params.constraints->types.empty() && db.type_names.size() > static_cast<size_t>(kMaxPaintableTypes))
             return Status::error("type painting supports databases of at most " + std::to_string(kMaxPaintableTypes) +
