@@ -1,8 +1,10 @@
 // terrasynth synth <project.tsyn | --db db.tsdb> -o out.png|out.f32|out.exr [--size WxH] [--origin X,Y]
 //                  [--seed N] [--level L] [--sources src.png] [--preview hillshade.png] [--backend opencl|reference]
+//                  [--coherent-with previous.tsyn]
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -15,7 +17,7 @@ namespace terrasynth::cli {
 namespace {
 
 struct SynthArgs {
-    std::string project, database, output, sources, preview, size, origin, backend = "opencl";
+    std::string project, database, output, sources, preview, size, origin, coherent_with, backend = "opencl";
     int64_t seed = -1;
     int level = 0;
 };
@@ -81,36 +83,87 @@ void reportPointSites(const Terrain& terrain, const PixelWindow& window, const H
     }
 }
 
+// The project (or a bare database) with the command line's overrides applied.
+Result<Project> projectWithOverrides(const std::string& project_path, const SynthArgs& args) {
+    Project project;
+    if (!project_path.empty()) {
+        auto loaded = loadProject(project_path);
+        if (!loaded) return loaded.status();
+        project = std::move(loaded.value());
+    } else if (!args.database.empty()) {
+        project.database = args.database;
+    } else {
+        return Status::error("give a project file or --db database.tsdb");
+    }
+    if (!args.size.empty()) {
+        int64_t w = 0, h = 0;
+        if (!parsePair(args.size, 'x', &w, &h) || w < 1 || h < 1 || w > 16384 || h > 16384)
+            return Status::error("--size must be WxH with sides 1..16384, got \"" + args.size + "\"");
+        project.width = static_cast<int>(w), project.height = static_cast<int>(h);
+    }
+    if (!args.origin.empty() && !parsePair(args.origin, ',', &project.origin_x, &project.origin_y))
+        return Status::error("--origin must be X,Y, got \"" + args.origin + "\"");
+    if (args.seed >= 0) project.synthesis.seed = static_cast<uint32_t>(args.seed);
+    return project;
+}
+
+Status writeOutputs(const SynthArgs& args, const Heightfield& heights) {
+    Status s = writeHeightfield(args.output, heights);
+    if (s && !args.preview.empty()) s = writeHillshadePng(args.preview, heights);
+    return s;
+}
+
+// --coherent-with: the project as an edit of another (s5.3), re-synthesizing only what changed.
+void runCoherentEdit(const SynthArgs& args, const TerrainOptions& options, Terrain& edited) {
+    if (!args.sources.empty() || args.level != 0)
+        return fail("synth", "--coherent-with writes level-0 heights only (no --sources, no --level)");
+    auto previous_project = projectWithOverrides(args.coherent_with, args);
+    if (!previous_project) return fail("synth", previous_project.message());
+    auto previous = Terrain::fromProject(previous_project.value(), options);
+    if (!previous) return fail("synth", previous.message());
+    const auto start = std::chrono::steady_clock::now();
+    PixelWindow changed;
+    auto heights = edited.heightsAfterEditOf(*previous.value(), &changed);
+    if (!heights) return fail("synth", heights.message());
+    const auto done = std::chrono::steady_clock::now();
+    Status s = writeOutputs(args, heights.value());
+    if (!s) return fail("synth", s.message());
+    // How much moved outside the changed area (the coherent band is re-synthesized too).
+    auto before = previous.value()->heights(edited.extent(), 0);
+    if (!before) return fail("synth", before.message());
+    size_t outside = 0, moved = 0;
+    for (int y = 0; y < heights->height; ++y)
+        for (int x = 0; x < heights->width; ++x) {
+            const int64_t gx = edited.extent().x + x, gy = edited.extent().y + y;
+            if (gx >= changed.x && gy >= changed.y && gx < changed.x + changed.width && gy < changed.y + changed.height)
+                continue;
+            ++outside;
+            moved += std::fabs(heights->at(x, y) - before->at(x, y)) > 1.0f;
+        }
+    std::printf("wrote %s: %dx%d as an edit of %s in %.1f ms\n", args.output.c_str(), heights->width, heights->height,
+                args.coherent_with.c_str(), std::chrono::duration<double, std::milli>(done - start).count());
+    std::printf("changed constraints reach %dx%d pixels at (%lld, %lld); outside it %zu of %zu pixels (%.3f%%) moved > 1 m\n",
+                changed.width, changed.height, static_cast<long long>(changed.x - edited.extent().x),
+                static_cast<long long>(changed.y - edited.extent().y), moved, outside,
+                outside ? 100.0 * moved / outside : 0.0);
+    reportPointSites(edited, edited.extent(), heights.value());
+}
+
 void runSynth(const SynthArgs& args) {
     // Refuse an unwritable output format before spending time on synthesis.
     if (!endsWith(args.output, ".png") && !endsWith(args.output, ".f32") && !endsWith(args.output, ".raw") &&
         !endsWith(args.output, ".exr"))
         return fail("synth", args.output + ": unknown heightmap extension (use .png, .f32, .raw or .exr)");
-    Project project;
-    if (!args.project.empty()) {
-        auto loaded = loadProject(args.project);
-        if (!loaded) return fail("synth", loaded.message());
-        project = std::move(loaded.value());
-    } else if (!args.database.empty()) {
-        project.database = args.database;
-    } else {
-        return fail("synth", "give a project file or --db database.tsdb");
-    }
-    if (!args.size.empty()) {
-        int64_t w = 0, h = 0;
-        if (!parsePair(args.size, 'x', &w, &h) || w < 1 || h < 1 || w > 16384 || h > 16384)
-            return fail("synth", "--size must be WxH with sides 1..16384, got \"" + args.size + "\"");
-        project.width = static_cast<int>(w), project.height = static_cast<int>(h);
-    }
-    if (!args.origin.empty() && !parsePair(args.origin, ',', &project.origin_x, &project.origin_y))
-        return fail("synth", "--origin must be X,Y, got \"" + args.origin + "\"");
-    if (args.seed >= 0) project.synthesis.seed = static_cast<uint32_t>(args.seed);
+    auto loaded = projectWithOverrides(args.project, args);
+    if (!loaded) return fail("synth", loaded.message());
+    const Project& project = loaded.value();
     TerrainOptions options;
     if (args.backend == "reference") options.synthesizer.backend = SynthesisBackend::Reference;
     else if (args.backend != "opencl") return fail("synth", "--backend must be opencl or reference");
     const auto start = std::chrono::steady_clock::now();
     auto terrain = Terrain::fromProject(project, options);
     if (!terrain) return fail("synth", terrain.message());
+    if (!args.coherent_with.empty()) return runCoherentEdit(args, options, *terrain.value());
     const auto ready = std::chrono::steady_clock::now();
     PixelWindow window = terrain.value()->extent();
     if (args.level > 0) {  // the extent at a coarser level covers the same ground
@@ -120,16 +173,9 @@ void runSynth(const SynthArgs& args) {
     auto out = terrain.value()->synthesize(window, args.level, !args.sources.empty());
     if (!out) return fail("synth", out.message());
     const auto done = std::chrono::steady_clock::now();
-    Status s = writeHeightfield(args.output, out->heights);
+    Status s = writeOutputs(args, out->heights);
+    if (s && !args.sources.empty()) s = writeSourcesMap(args.sources, out.value(), terrain.value()->database(), args.level);
     if (!s) return fail("synth", s.message());
-    if (!args.sources.empty()) {
-        s = writeSourcesMap(args.sources, out.value(), terrain.value()->database(), args.level);
-        if (!s) return fail("synth", s.message());
-    }
-    if (!args.preview.empty()) {
-        s = writeHillshadePng(args.preview, out->heights);
-        if (!s) return fail("synth", s.message());
-    }
     const HeightRange range = heightRange(out->heights);
     std::printf("wrote %s: %dx%d at %.2f m/pixel, heights %.1f..%.1f m, seed %u\n", args.output.c_str(),
                 out->heights.width, out->heights.height, out->heights.meters_per_pixel_x, range.min, range.max,
@@ -153,6 +199,8 @@ void addSynthCommand(CLI::App& app) {
     cmd->add_option("--sources", args->sources, "Write the exemplar coordinate map (16-bit RGB PNG)");
     cmd->add_option("--preview", args->preview, "Write a hillshade preview PNG");
     cmd->add_option("--backend", args->backend, "opencl (default) or reference (plain C++)");
+    cmd->add_option("--coherent-with", args->coherent_with,
+                    "Previous version of the project (.tsyn): re-synthesize only where the constraints changed (s5.3)");
     cmd->callback([args] { runSynth(*args); });
 }
 

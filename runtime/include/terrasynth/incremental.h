@@ -11,6 +11,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "terrasynth/synthesizer.h"
 
@@ -31,6 +32,18 @@ public:
     // Point constraints whose site lies in `changed` are lifted first (liftPointConstraints, with
     // this update's coherence) so their sites land on their heights; see holdPointHeights.
     Status update(std::shared_ptr<const SynthesisConstraints> constraints, const PixelWindow& changed);
+    // What an edit from the current constraints to `next` manipulates (s5.3: W = 1 inside the
+    // manipulated constraints' reach): the discs of points and the reach bands of curves that are in
+    // one set and not the other (a changed lift counts), and the pixels whose painted type changed.
+    // `mask` is per extent pixel (1 = Free), `box` its bounding box (width 0 = nothing changed).
+    struct EditArea {
+        PixelWindow box;
+        std::vector<uint8_t> mask;
+    };
+    EditArea areaAffectedBy(const SynthesisConstraints* next) const;
+    // update() for exactly areaAffectedBy(next): Free where its mask is set, Coherent in a band
+    // around its box. `changed` (optional) receives the box.
+    Status applyEdit(std::shared_ptr<const SynthesisConstraints> next, PixelWindow* changed = nullptr);
     // Copy-paste (s5.3, fig. 8): the polygon `source` (level-0 pixels of the terrain's global grid,
     // or of exemplar `exemplar` when >= 0) is moved by (dx, dy) pixels and raised by
     // `height_offset_m`. The pasted coordinates are written for every level and pass and frozen, and

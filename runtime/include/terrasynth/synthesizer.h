@@ -137,7 +137,7 @@ protected:
 // Cost: rounds x points small syntheses (about 2 ms each via PoCL). Errors: those of synthesize().
 struct PointLiftOptions {
     float tolerance_m = 0.5f;
-    int max_rounds = 6;  // >= 1; 1 only measures
+    int max_rounds = 10;  // >= 1; 1 only measures
     // Lift only the points whose site lies in this level-0 window (an edit's area); the others keep
     // their lift. Unset = all points.
     std::optional<PixelWindow> sites_within;

@@ -37,6 +37,14 @@ public:
     Result<Heightfield> heights(const PixelWindow& window, int level = 0);
     // Heights plus the exemplar coordinate map.
     Result<SynthesisOutput> synthesize(const PixelWindow& window, int level = 0, bool want_sources = false);
+    // Coherent re-synthesis (s5.3) for scripts and the CLI: this project's extent as an edit of
+    // `previous`, which must use the same database, extent and synthesis settings. The previous
+    // terrain is synthesized with its history, then only the reach of the constraints that changed
+    // (IncrementalTerrain::areaAffectedBy; `changed` receives its bounding box, width 0 = none) is
+    // re-synthesized Free, a band of IncrementalTerrain::kCoherentBand pixels around the box
+    // Coherent, and everything beyond keeps the previous heights bit for bit. Freeze brushes of both projects are frozen. Errors: differing
+    // settings, pastes or layers in either project (not supported here).
+    Result<Heightfield> heightsAfterEditOf(Terrain& previous, PixelWindow* changed = nullptr);
     // The project's own extent at level 0.
     PixelWindow extent() const { return {project_.origin_x, project_.origin_y, project_.width, project_.height}; }
 
@@ -56,7 +64,8 @@ private:
     std::unordered_map<std::thread::id, std::unique_ptr<Synthesizer>> synthesizers_;
     std::mutex edit_mutex_;
     bool edit_ready_ = false;
-    std::vector<float> edit_;
+    std::vector<float> edit_;    // shaped - plain, per extent pixel
+    std::vector<float> shaped_;  // the shaped extent's heights
 };
 
 }  // namespace terrasynth

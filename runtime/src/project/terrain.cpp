@@ -120,6 +120,7 @@ Result<const std::vector<float>*> Terrain::extentEdit() {
     if (!plain) return plain.status();
     edit_.resize(plain->heights.size());
     for (size_t i = 0; i < edit_.size(); ++i) edit_[i] = shaped->heights[i] - plain->heights.heights[i];
+    shaped_ = std::move(shaped->heights);
     edit_ready_ = true;
     return &edit_;
 }
@@ -131,10 +132,22 @@ Result<SynthesisOutput> Terrain::synthesize(const PixelWindow& window, int level
     if (!out || !hasExtentEdit()) return out;
     auto edit = extentEdit();
     if (!edit) return edit.status();
-    // Add the edit, box-averaged over the 2^level x 2^level block of extent pixels of each sample.
-    const int64_t block = int64_t(1) << level;
     const PixelWindow e = extent();
     Heightfield& h = out->heights;
+    if (level == 0) {
+        // The shaped heights themselves: plain + (shaped - plain) can be an ulp off, and frozen and
+        // pasted pixels must stay bit-identical.
+        for (int y = 0; y < h.height; ++y)
+            for (int x = 0; x < h.width; ++x) {
+                const int64_t gx = window.x + x - e.x, gy = window.y + y - e.y;
+                if (gx >= 0 && gy >= 0 && gx < e.width && gy < e.height)
+                    h.at(x, y) = shaped_[static_cast<size_t>(gy) * e.width + gx];
+            }
+        return out;
+    }
+    // Coarser levels add the edit, box-averaged over the 2^level x 2^level block of extent pixels of
+    // each sample.
+    const int64_t block = int64_t(1) << level;
     for (int y = 0; y < h.height; ++y) {
         for (int x = 0; x < h.width; ++x) {
             const int64_t gx0 = (window.x + x) * block - e.x, gy0 = (window.y + y) * block - e.y;

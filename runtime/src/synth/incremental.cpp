@@ -4,8 +4,10 @@
 #include "terrasynth/incremental.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
+#include "synth/curve_geometry.h"
 #include "synth/synthesis_plan.h"
 
 namespace terrasynth {
@@ -57,6 +59,86 @@ Result<IncrementalTerrain> IncrementalTerrain::create(Synthesizer& synthesizer, 
     terrain.history_ = std::move(out->history);
     terrain.last_window_ = extent;
     return terrain;
+}
+
+namespace {
+
+bool samePoint(const PointConstraint& a, const PointConstraint& b) {
+    return a.x == b.x && a.y == b.y && a.height_m == b.height_m && a.slope_direction_deg == b.slope_direction_deg &&
+           a.slope_angle_deg == b.slope_angle_deg && a.radius_px == b.radius_px && a.lift_m == b.lift_m;
+}
+
+bool sameCurve(const CurveConstraint& a, const CurveConstraint& b) {
+    if (a.course != b.course || a.spline != b.spline || a.widgets.size() != b.widgets.size()) return false;
+    for (size_t i = 0; i < a.widgets.size(); ++i) {
+        const CurveWidget &u = a.widgets[i], &v = b.widgets[i];
+        if (u.t != v.t || u.height_m != v.height_m || u.left_gradient != v.left_gradient ||
+            u.right_gradient != v.right_gradient || u.left_reach_px != v.left_reach_px || u.right_reach_px != v.right_reach_px)
+            return false;
+    }
+    return true;
+}
+
+uint8_t paintedAt(const TypePaint& paint, int64_t x, int64_t y) {
+    if (paint.empty() || x < paint.x || y < paint.y || x >= paint.x + paint.width || y >= paint.y + paint.height)
+        return TypePaint::kUnpainted;
+    return paint.types[static_cast<size_t>(y - paint.y) * paint.width + (x - paint.x)];
+}
+
+}  // namespace
+
+IncrementalTerrain::EditArea IncrementalTerrain::areaAffectedBy(const SynthesisConstraints* next) const {
+    static const SynthesisConstraints kNone;
+    const SynthesisConstraints& a = params_.constraints ? *params_.constraints : kNone;
+    const SynthesisConstraints& b = next ? *next : kNone;
+    EditArea area;
+    area.mask.assign(static_cast<size_t>(extent_.width) * extent_.height, 0);
+    int64_t x0 = INT64_MAX, y0 = INT64_MAX, x1 = INT64_MIN, y1 = INT64_MIN;
+    auto mark = [&](int64_t gx, int64_t gy) {
+        if (gx < extent_.x || gy < extent_.y || gx >= extent_.x + extent_.width || gy >= extent_.y + extent_.height) return;
+        area.mask[static_cast<size_t>(gy - extent_.y) * extent_.width + (gx - extent_.x)] = 1;
+        x0 = std::min(x0, gx), y0 = std::min(y0, gy), x1 = std::max(x1, gx + 1), y1 = std::max(y1, gy + 1);
+    };
+    auto disc = [&](double cx, double cy, double r) {
+        for (int64_t y = static_cast<int64_t>(std::floor(cy - r)); y <= static_cast<int64_t>(std::ceil(cy + r)); ++y)
+            for (int64_t x = static_cast<int64_t>(std::floor(cx - r)); x <= static_cast<int64_t>(std::ceil(cx + r)); ++x)
+                if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) mark(x, y);
+    };
+    // Points and curves that are in one set and not the other: their whole area of effect (s5.3).
+    auto pointsOnlyIn = [&](const SynthesisConstraints& from, const SynthesisConstraints& other) {
+        for (const PointConstraint& p : from.points)
+            if (std::none_of(other.points.begin(), other.points.end(), [&](const PointConstraint& q) { return samePoint(p, q); }))
+                disc(p.x, p.y, p.radius_px);
+        for (const CurveConstraint& c : from.curves) {
+            if (std::any_of(other.curves.begin(), other.curves.end(), [&](const CurveConstraint& d) { return sameCurve(c, d); }))
+                continue;
+            float reach = 0.0f;
+            for (const CurveWidget& w : c.widgets) reach = std::max({reach, w.left_reach_px, w.right_reach_px});
+            const auto course = synth::cachedCourse(c);
+            for (size_t i = 0; i < course->x.size(); ++i) disc(course->x[i], course->y[i], reach + 1.0);
+        }
+    };
+    pointsOnlyIn(a, b);
+    pointsOnlyIn(b, a);
+    // Type painting: the pixels whose painted type changed.
+    if (!a.types.empty() || !b.types.empty())
+        for (int y = 0; y < extent_.height; ++y)
+            for (int x = 0; x < extent_.width; ++x)
+                if (paintedAt(a.types, extent_.x + x, extent_.y + y) != paintedAt(b.types, extent_.x + x, extent_.y + y))
+                    mark(extent_.x + x, extent_.y + y);
+    if (x1 > x0) area.box = {x0, y0, static_cast<int>(x1 - x0), static_cast<int>(y1 - y0)};
+    else area.box = {extent_.x, extent_.y, 0, 0};
+    return area;
+}
+
+Status IncrementalTerrain::applyEdit(std::shared_ptr<const SynthesisConstraints> next, PixelWindow* changed) {
+    const EditArea area = areaAffectedBy(next.get());
+    if (changed) *changed = area.box;
+    if (area.box.width == 0) {
+        params_.constraints = std::move(next);
+        return Status::ok();
+    }
+    return resynthesize(area.box, &area.mask, std::move(next), hold_point_heights_);
 }
 
 Status IncrementalTerrain::update(std::shared_ptr<const SynthesisConstraints> constraints, const PixelWindow& changed) {

@@ -29,29 +29,35 @@ Result<float> finishedSiteHeight(Synthesizer& synthesizer, const SynthesisParams
     return top + (bottom - top) * ty;
 }
 
-// The finished height is a step function of the lift where a discrete candidate choice flips,
-// and close to "lift + constant" between steps. So the search steps by the residual until the
-// residual changes sign, then narrows the bracket by false position (bisection when that stalls).
+// The finished height moves with the lift between steps where a discrete candidate choice flips,
+// and other points' lifts shift it a little too (no coherence: s5.3, fig. 7b). The search takes
+// secant steps until the residual changes sign, then narrows the bracket by false position
+// (bisection when that stalls against one end).
 struct LiftSearch {
-    float best_lift = 0.0f, best_residual = std::numeric_limits<float>::infinity();
-    float last_lift = 0.0f, last_residual = 0.0f;
-    bool has_below = false, has_above = false;  // a lift whose site lands below / above the target
-    float below_lift = 0.0f, below_residual = 0.0f, above_lift = 0.0f, above_residual = 0.0f;
+    struct Sample { float lift = 0.0f, residual = 0.0f; int round = -1; };
+    Sample last, previous, opposite;  // opposite: the latest sample on the other side of the target
+    // A bracket older than this many rounds is dropped: other points' lifts have moved the site since.
+    static constexpr int kBracketRounds = 3;
 
-    void record(float lift, float residual) {
-        last_lift = lift, last_residual = residual;
-        if (std::fabs(residual) < std::fabs(best_residual)) best_lift = lift, best_residual = residual;
-        if (residual < 0.0f) has_below = true, below_lift = lift, below_residual = residual;
-        if (residual > 0.0f) has_above = true, above_lift = lift, above_residual = residual;
+    void record(float lift, float residual, int round) {
+        const Sample now{lift, residual, round};
+        if (last.round >= 0 && (residual < 0.0f) != (last.residual < 0.0f)) opposite = last;
+        previous = last;
+        last = now;
     }
     float next() const {
-        if (!(has_below && has_above)) return last_lift - last_residual;
-        const float span = above_lift - below_lift;
-        float lift = below_lift - below_residual * span / (above_residual - below_residual);
-        // Keep away from the ends so a step between them is found in a few rounds.
-        const float lo = std::min(below_lift, above_lift), hi = std::max(below_lift, above_lift);
-        if (!(lift > lo + 0.1f * (hi - lo) && lift < hi - 0.1f * (hi - lo))) lift = 0.5f * (below_lift + above_lift);
-        return lift;
+        if (opposite.round >= 0 && last.round - opposite.round <= kBracketRounds) {
+            const float lo = std::min(last.lift, opposite.lift), hi = std::max(last.lift, opposite.lift);
+            float lift = last.lift - last.residual * (opposite.lift - last.lift) / (opposite.residual - last.residual);
+            if (!(lift > lo + 0.1f * (hi - lo) && lift < hi - 0.1f * (hi - lo))) lift = 0.5f * (lo + hi);
+            return lift;
+        }
+        float slope = 1.0f;  // a lift of the target moves the site about as much
+        if (previous.round >= 0 && previous.lift != last.lift) {
+            const float measured = (last.residual - previous.residual) / (last.lift - previous.lift);
+            if (measured > 0.3f && measured < 3.0f) slope = measured;
+        }
+        return last.lift - last.residual / slope;
     }
 };
 
@@ -75,20 +81,26 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftPointConstraints(Synthes
     probe.record_history = false;
     probe.constraints = lifted;
     std::vector<LiftSearch> searches(points.size());
+    std::vector<float> best_lifts(points.size());
+    float best_worst = std::numeric_limits<float>::infinity();
     for (int round = 0; round < options.max_rounds && !moving.empty(); ++round) {
-        bool all_within = true;
+        float worst = 0.0f;
         for (size_t i : moving) {
             auto height = finishedSiteHeight(synthesizer, probe, points[i]);
             if (!height) return height.status().withContext("point constraint " + std::to_string(i));
             const float residual = height.value() - points[i].height_m;
-            searches[i].record(points[i].lift_m, residual);
-            all_within = all_within && std::fabs(residual) <= options.tolerance_m;
+            searches[i].record(points[i].lift_m, residual, round);
+            worst = std::max(worst, std::fabs(residual));
         }
-        if (all_within) break;
-        // Overlapping points move each other's sites a little; each keeps searching its own lift.
+        // The lifts of a whole round were synthesized together, so the best round is what is kept.
+        if (worst < best_worst) {
+            best_worst = worst;
+            for (size_t i : moving) best_lifts[i] = points[i].lift_m;
+        }
+        if (worst <= options.tolerance_m) break;
         for (size_t i : moving) points[i].lift_m = searches[i].next();
     }
-    for (size_t i : moving) points[i].lift_m = searches[i].best_lift;
+    for (size_t i : moving) points[i].lift_m = best_lifts[i];
     return std::shared_ptr<const SynthesisConstraints>(std::move(lifted));
 }
 
