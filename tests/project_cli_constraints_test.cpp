@@ -21,24 +21,8 @@ namespace {
 
 constexpr int kSize = 384;
 
-struct CliRun {
-    int exit_code = -1;
-    std::string out;  // stdout and stderr together
-};
-
-CliRun runSynth(const std::string& args) {
-    CliRun r;
-    FILE* pipe = ::popen((test::binDir() + "/terrasynth synth " + args + " 2>&1").c_str(), "r");
-    if (!pipe) return r;
-    char buffer[4096];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, n);
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-bool cliBuilt() { return ::access((test::binDir() + "/terrasynth").c_str(), X_OK) == 0; }
+test::CliRun runSynth(const std::string& args) { return test::runTerrasynth("synth " + args); }
+bool cliBuilt() { return test::terrasynthBuilt(); }
 
 std::string writeProject(const std::string& path, uint32_t seed, const json& constraints) {
     const json project = {{"format", "terrasynth-project"},
@@ -53,7 +37,7 @@ std::string writeProject(const std::string& path, uint32_t seed, const json& con
 
 // Synthesizes `project` to `<stem>.f32` (plus extra arguments) and reads the heights back.
 Heightfield synthesize(const std::string& project, const std::string& stem, const std::string& extra = "") {
-    const CliRun r = runSynth("'" + project + "' -o '" + stem + ".f32' " + extra);
+    const test::CliRun r = runSynth("'" + project + "' -o '" + stem + ".f32' " + extra);
     EXPECT_EQ(r.exit_code, 0) << r.out;
     auto read = readExemplar(stem + ".f32");
     EXPECT_TRUE(read) << read.message();

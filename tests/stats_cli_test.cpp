@@ -16,24 +16,8 @@ using namespace terrasynth;
 
 namespace {
 
-struct CliRun {
-    int exit_code = -1;
-    std::string out;  // stdout and stderr together
-};
-
-CliRun runCli(const std::string& args) {
-    CliRun r;
-    FILE* pipe = ::popen((test::binDir() + "/terrasynth stats " + args + " 2>&1").c_str(), "r");
-    if (!pipe) return r;
-    char buffer[4096];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, n);
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-bool cliBuilt() { return ::access((test::binDir() + "/terrasynth").c_str(), X_OK) == 0; }
+test::CliRun runCli(const std::string& args) { return test::runTerrasynth("stats " + args); }
+bool cliBuilt() { return test::terrasynthBuilt(); }
 
 std::string exemplar(const std::string& stem) { return test::sharedExemplarsDir() + "/" + stem + ".png"; }
 
@@ -41,7 +25,7 @@ std::string exemplar(const std::string& stem) { return test::sharedExemplarsDir(
 
 TEST(StatsCli, JsonSummaryMatchesTheLibrary) {
     if (!cliBuilt()) GTEST_SKIP() << "build the terrasynth_cli target first";
-    const CliRun r = runCli("'" + exemplar("orom_rockies") + "' --json");
+    const test::CliRun r = runCli("'" + exemplar("orom_rockies") + "' --json");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const nlohmann::json j = nlohmann::json::parse(r.out);
     auto stats = computeTerrainStats(test::loadExemplarField("orom_rockies"));
@@ -56,14 +40,14 @@ TEST(StatsCli, JsonSummaryMatchesTheLibrary) {
 
 TEST(StatsCli, VsResamplesToTheFirstTerrainsSpacingAndPrintsDistances) {
     if (!cliBuilt()) GTEST_SKIP() << "build the terrasynth_cli target first";
-    const CliRun text = runCli("'" + exemplar("orom_rockies") + "' --vs '" + exemplar("ttb_bigtujunga") + "'");
+    const test::CliRun text = runCli("'" + exemplar("orom_rockies") + "' --vs '" + exemplar("ttb_bigtujunga") + "'");
     ASSERT_EQ(text.exit_code, 0) << text.out;
     EXPECT_NE(text.out.find("resampled"), std::string::npos) << text.out;
     EXPECT_NE(text.out.find("92.6"), std::string::npos) << text.out;
     for (int m = 0; m < kMetricCount; ++m)
         EXPECT_NE(text.out.find(metricName(static_cast<Metric>(m))), std::string::npos) << metricName(static_cast<Metric>(m));
 
-    const CliRun json = runCli("'" + exemplar("orom_rockies") + "' --vs '" + exemplar("ttb_bigtujunga") + "' --json");
+    const test::CliRun json = runCli("'" + exemplar("orom_rockies") + "' --vs '" + exemplar("ttb_bigtujunga") + "' --json");
     ASSERT_EQ(json.exit_code, 0) << json.out;
     const nlohmann::json j = nlohmann::json::parse(json.out);
     EXPECT_NEAR(j["b"]["meters_per_pixel"][0].get<double>(), 92.6, 1e-6);
@@ -74,14 +58,14 @@ TEST(StatsCli, VsResamplesToTheFirstTerrainsSpacingAndPrintsDistances) {
 
 TEST(StatsCli, BadInputFailsWithTheFileName) {
     if (!cliBuilt()) GTEST_SKIP() << "build the terrasynth_cli target first";
-    const CliRun missing = runCli("/nonexistent/dem.png");
+    const test::CliRun missing = runCli("/nonexistent/dem.png");
     EXPECT_EQ(missing.exit_code, 1);
     EXPECT_NE(missing.out.find("/nonexistent/dem.png"), std::string::npos) << missing.out;
 
     // A heightfield too small for the statistics.
     const std::string dir = test::scratchDir("stats_cli");
     ASSERT_TRUE(writeHeightfieldF32(dir + "/tiny.f32", Heightfield(16, 16, 30.0, 5.0f)));
-    const CliRun tiny = runCli("'" + dir + "/tiny.f32'");
+    const test::CliRun tiny = runCli("'" + dir + "/tiny.f32'");
     EXPECT_EQ(tiny.exit_code, 1);
     EXPECT_NE(tiny.out.find("tiny.f32"), std::string::npos) << tiny.out;
     EXPECT_NE(tiny.out.find("32x32"), std::string::npos) << tiny.out;

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <cstdio>
 
 #include <cstdlib>
 
@@ -24,6 +27,20 @@ const bool kPoclCacheSet = [] {
 std::string dataDir() { return env("TERRASYNTH_DATA_DIR", TERRASYNTH_TEST_DATA_DIR); }
 std::string sharedExemplarsDir() { return env("TERRASYNTH_SHARED_EXEMPLARS", TERRASYNTH_TEST_SHARED_EXEMPLARS); }
 std::string binDir() { return env("TERRASYNTH_BIN_DIR", TERRASYNTH_TEST_BIN_DIR); }
+
+CliRun runTerrasynth(const std::string& args) {
+    CliRun r;
+    FILE* pipe = ::popen((binDir() + "/terrasynth " + args + " 2>&1").c_str(), "r");
+    if (!pipe) return r;
+    char buffer[4096];
+    size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, n);
+    const int status = ::pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+bool terrasynthBuilt() { return ::access((binDir() + "/terrasynth").c_str(), X_OK) == 0; }
 
 std::string scratchDir(const std::string& name) {
     const std::string dir = env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + "/" + name;

@@ -10,6 +10,13 @@ namespace terrasynth::test {
 std::string dataDir();             // shipped defaults: <repo>/data
 std::string sharedExemplarsDir();  // ../shared/exemplars
 std::string binDir();              // built executables
+// Runs `<binDir>/terrasynth <args>` through the shell; stdout and stderr together.
+struct CliRun {
+    int exit_code = -1;
+    std::string out;
+};
+CliRun runTerrasynth(const std::string& args);
+bool terrasynthBuilt();
 // A fresh, empty scratch directory for one test: <build>/test_tmp/<name>.
 std::string scratchDir(const std::string& name);
 // Loads a shipped or shared exemplar (by stem, e.g. "orom_alaska") and aborts the test on error.

@@ -28,6 +28,12 @@ struct PointConstraint {
     // although the finest levels are unconstrained (set by liftPointConstraints in synthesizer.h;
     // not read from projects). 0 = the paper's plain target.
     float lift_m = 0.0f;
+
+    // Equal in everything the user sets (the lift excluded).
+    bool samePlacement(const PointConstraint& o) const {
+        return x == o.x && y == o.y && height_m == o.height_m && slope_direction_deg == o.slope_direction_deg &&
+               slope_angle_deg == o.slope_angle_deg && radius_px == o.radius_px;
+    }
 };
 
 // A widget on a curve constraint (s3, s5.1): properties at arc-length parameter t of the course.

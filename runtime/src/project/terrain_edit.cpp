@@ -25,11 +25,6 @@ Status sameSettings(const Project& a, const Project& b, const ExemplarDatabase& 
     return Status::ok();
 }
 
-bool samePoint(const PointConstraint& a, const PointConstraint& b) {
-    return a.x == b.x && a.y == b.y && a.height_m == b.height_m && a.slope_direction_deg == b.slope_direction_deg &&
-           a.slope_angle_deg == b.slope_angle_deg && a.radius_px == b.radius_px;
-}
-
 }  // namespace
 
 Result<Heightfield> Terrain::heightsAfterEditOf(Terrain& previous, PixelWindow* changed) {
@@ -63,7 +58,7 @@ Result<Heightfield> Terrain::heightsAfterEditOf(Terrain& previous, PixelWindow* 
     if (const auto& current = incremental->params().constraints)
         for (PointConstraint& p : next->points)
             for (const PointConstraint& q : current->points)
-                if (samePoint(p, q)) p.lift_m = q.lift_m;
+                if (p.samePlacement(q)) p.lift_m = q.lift_m;
     s = incremental->applyEdit(next, changed);
     if (!s) return s.withContext(project_.path);
     return incremental->heights();

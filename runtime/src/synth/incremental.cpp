@@ -63,10 +63,7 @@ Result<IncrementalTerrain> IncrementalTerrain::create(Synthesizer& synthesizer, 
 
 namespace {
 
-bool samePoint(const PointConstraint& a, const PointConstraint& b) {
-    return a.x == b.x && a.y == b.y && a.height_m == b.height_m && a.slope_direction_deg == b.slope_direction_deg &&
-           a.slope_angle_deg == b.slope_angle_deg && a.radius_px == b.radius_px && a.lift_m == b.lift_m;
-}
+bool samePoint(const PointConstraint& a, const PointConstraint& b) { return a.samePlacement(b) && a.lift_m == b.lift_m; }
 
 bool sameCurve(const CurveConstraint& a, const CurveConstraint& b) {
     if (a.course != b.course || a.spline != b.spline || a.widgets.size() != b.widgets.size()) return false;
