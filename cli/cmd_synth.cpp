@@ -123,14 +123,13 @@ void runCoherentEdit(const SynthArgs& args, const TerrainOptions& options, Terra
     if (!previous) return fail("synth", previous.message());
     const auto start = std::chrono::steady_clock::now();
     PixelWindow changed;
-    auto heights = edited.heightsAfterEditOf(*previous.value(), &changed);
+    Heightfield before;
+    auto heights = edited.heightsAfterEditOf(*previous.value(), &changed, &before);
     if (!heights) return fail("synth", heights.message());
     const auto done = std::chrono::steady_clock::now();
     Status s = writeOutputs(args, heights.value());
     if (!s) return fail("synth", s.message());
     // How much moved outside the changed area (the coherent band is re-synthesized too).
-    auto before = previous.value()->heights(edited.extent(), 0);
-    if (!before) return fail("synth", before.message());
     size_t outside = 0, moved = 0;
     for (int y = 0; y < heights->height; ++y)
         for (int x = 0; x < heights->width; ++x) {
@@ -138,7 +137,7 @@ void runCoherentEdit(const SynthArgs& args, const TerrainOptions& options, Terra
             if (gx >= changed.x && gy >= changed.y && gx < changed.x + changed.width && gy < changed.y + changed.height)
                 continue;
             ++outside;
-            moved += std::fabs(heights->at(x, y) - before->at(x, y)) > 1.0f;
+            moved += std::fabs(heights->at(x, y) - before.at(x, y)) > 1.0f;
         }
     std::printf("wrote %s: %dx%d as an edit of %s in %.1f ms\n", args.output.c_str(), heights->width, heights->height,
                 args.coherent_with.c_str(), std::chrono::duration<double, std::milli>(done - start).count());

@@ -42,9 +42,11 @@ public:
     // terrain is synthesized with its history, then only the reach of the constraints that changed
     // (IncrementalTerrain::areaAffectedBy; `changed` receives its bounding box, width 0 = none) is
     // re-synthesized Free, a band of IncrementalTerrain::kCoherentBand pixels around the box
-    // Coherent, and everything beyond keeps the previous heights bit for bit. Freeze brushes of both projects are frozen. Errors: differing
-    // settings, pastes or layers in either project (not supported here).
-    Result<Heightfield> heightsAfterEditOf(Terrain& previous, PixelWindow* changed = nullptr);
+    // Coherent, and everything beyond keeps the previous heights bit for bit. `before` (optional)
+    // receives the previous extent's heights, as previous.heights() gives them. Freeze brushes of
+    // both projects are frozen. Errors: differing settings, pastes or layers in either project.
+    Result<Heightfield> heightsAfterEditOf(Terrain& previous, PixelWindow* changed = nullptr,
+                                           Heightfield* before = nullptr);
     // The project's own extent at level 0.
     PixelWindow extent() const { return {project_.origin_x, project_.origin_y, project_.width, project_.height}; }
 

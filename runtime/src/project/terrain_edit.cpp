@@ -27,7 +27,7 @@ Status sameSettings(const Project& a, const Project& b, const ExemplarDatabase& 
 
 }  // namespace
 
-Result<Heightfield> Terrain::heightsAfterEditOf(Terrain& previous, PixelWindow* changed) {
+Result<Heightfield> Terrain::heightsAfterEditOf(Terrain& previous, PixelWindow* changed, Heightfield* before_heights) {
     Status s = sameSettings(previous.project_, project_, *previous.db_, *db_);
     if (!s) return s.withContext(project_.path + " as an edit of " + previous.project_.path);
     auto synthesizer = synthesizerForThisThread();
@@ -59,6 +59,7 @@ Result<Heightfield> Terrain::heightsAfterEditOf(Terrain& previous, PixelWindow* 
         for (PointConstraint& p : next->points)
             for (const PointConstraint& q : current->points)
                 if (p.samePlacement(q)) p.lift_m = q.lift_m;
+    if (before_heights) *before_heights = incremental->heights();
     s = incremental->applyEdit(next, changed);
     if (!s) return s.withContext(project_.path);
     return incremental->heights();
