@@ -1,23 +1,18 @@
 // terrasynth_plugin/height_source.h: where tile heights come from.
 //
-// The tile manager only needs "heights of a window of the global grid at a level". A HeightSource is
-// that function; it must be callable from several worker threads at once and must return
-// bit-identical samples for overlapping windows (the contract of Terrain::heights), otherwise
-// neighbouring tiles would not meet.
+// The tile manager only needs "heights of a window of the global grid at a level": a
+// terrasynth::HeightSource (terrasynth/grid.h, the contract of Terrain::heights and
+// EditSession::heightSource). This header adds sources that need no synthesis.
 #pragma once
 
 #include <functional>
 #include <memory>
 
-#include "terrasynth/heightfield.h"
-#include "terrasynth/status.h"
-#include "terrasynth/synthesizer.h"
+#include "terrasynth/grid.h"
 
 namespace terrasynth::plugin {
 
-// Heights (metres, spacing = level-0 spacing * 2^level) of `window` in the global pixel grid of
-// `level`. Thread-safe. The returned field has exactly window.width x window.height samples.
-using HeightSource = std::function<Result<Heightfield>(const PixelWindow& window, int level)>;
+using terrasynth::HeightSource;
 
 // A real DEM repeated without seams over the unbounded plane (mirrored every other period), for
 // viewing an exemplar and for tests that must not depend on synthesis. Level k sample (X, Y) is the

@@ -3,9 +3,9 @@
 // A tile at `level` k is the window of (tile_size + 1) samples of the global pixel grid of level k
 // starting at (x * tile_size, y * tile_size): neighbours share their edge samples, and the four
 // children of (k, x, y) are (k-1, 2x+i, 2y+j). Level 0 is the finest (the database spacing); level k
-// has 2^k times that spacing (terrasynth/terrain.h). x grows east and y grows south, like pixels;
-// the world frame of the scene graph is x east, y north, z up, metres, with global pixel (0, 0) of
-// level 0 at the origin.
+// has 2^k times that spacing. x grows east and y grows south, like pixels; the world frame of the
+// scene graph is the one of terrasynth/grid.h (GridFrame): x east, y north, z up, metres, with
+// global pixel (0, 0) of level 0 at the origin.
 #pragma once
 
 #include <cmath>
@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "terrasynth/synthesizer.h"
+#include "terrasynth/grid.h"
 
 namespace terrasynth::plugin {
 
@@ -44,7 +44,8 @@ struct TileLayout {
     int tile_size = 256;            // quads per tile side; a tile has tile_size + 1 samples per side
     double meters_per_pixel = 1.0;  // level-0 spacing
 
-    double spacing(int level) const { return std::ldexp(meters_per_pixel, level); }
+    GridFrame frame() const { return {meters_per_pixel}; }
+    double spacing(int level) const { return frame().spacing(level); }
     double tileMeters(int level) const { return spacing(level) * tile_size; }
     // The tile's samples in the global grid of its level (edges shared with neighbours).
     PixelWindow window(const TileKey& k) const {

@@ -20,15 +20,12 @@
 
 #include "terrasynth/heightfield.h"
 #include "terrasynth/status.h"
-#include "terrasynth/synthesizer.h"  // PixelWindow (header only; the export module does not link synth)
+#include "terrasynth/grid.h"
 
 namespace terrasynth {
 
-// Heights of a window of the global pixel grid at `level`, in metres. The window may reach outside
-// the requested export region by a one-pixel apron (for normals). Windows that overlap must agree.
-using HeightSource = std::function<Result<Heightfield>(const PixelWindow& window, int level)>;
-// Terrain type id per pixel of a window (width*height, row-major, 255 = unknown); optional.
-using TypeSource = std::function<Result<std::vector<uint8_t>>(const PixelWindow& window, int level)>;
+// Sources (HeightSource, TypeSource: terrasynth/grid.h) are asked for windows that may reach outside
+// the requested export region by a one-pixel apron (for normals).
 
 // A source over a heightfield in memory: pixel (x, y) of the global grid is field sample (x, y);
 // windows reaching outside repeat the edge samples. `level` must be 0. The field is copied.

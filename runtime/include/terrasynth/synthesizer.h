@@ -17,6 +17,7 @@
 
 #include "terrasynth/constraints.h"
 #include "terrasynth/database.h"
+#include "terrasynth/grid.h"
 #include "terrasynth/heightfield.h"
 #include "terrasynth/status.h"
 
@@ -69,12 +70,6 @@ struct SynthesisParams {
     std::shared_ptr<const SynthesisHistory> previous;
     std::shared_ptr<const CoherenceMap> coherence;
     bool record_history = false;  // fill SynthesisOutput::history
-};
-
-// A rectangle of the global pixel grid at some pyramid level (x east, y south).
-struct PixelWindow {
-    int64_t x = 0, y = 0;
-    int width = 0, height = 0;
 };
 
 struct SynthesisOutput {

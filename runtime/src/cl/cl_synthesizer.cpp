@@ -7,8 +7,8 @@
 #include <cstdlib>
 
 #include "cl/cl_runtime.h"
-#include "synth/hash.h"
-#include "synth/reference_synthesizer.h"
+#include "core/hash.h"
+#include "cl/cl_synthesizer.h"
 #include "synth/synthesis_driver.h"
 
 namespace terrasynth {
@@ -182,7 +182,7 @@ private:
         if (!s) return s;
         const DeviceLevel& d = levels_[level];
         ArgSetter args(init_.get(), "init_level");
-        args(current_.get())(toArg(region))(d.seeds.get())(d.seed_count)(d.width)(synth::levelSalt(seed, level, 0));
+        args(current_.get())(toArg(region))(d.seeds.get())(d.seed_count)(d.width)(core::levelSalt(seed, level, 0));
         if (!args.status()) return args.status();
         return run(init_.get(), region.width, region.height);
     }
@@ -195,7 +195,7 @@ private:
         const DeviceLevel& c = levels_[level];
         ArgSetter args(upsample_.get(), "upsample_jitter");
         args(current_.get())(toArg(parent))(next_.get())(toArg(child))(p.exemplar.get())(p.width)(p.rects.get())(
-            c.rects.get())(jitter)(synth::levelSalt(seed, level, 1))(synth::levelSalt(seed, level, 2));
+            c.rects.get())(jitter)(core::levelSalt(seed, level, 1))(core::levelSalt(seed, level, 2));
         if (!args.status()) return args.status();
         s = run(upsample_.get(), child.width, child.height);
         std::swap(current_, next_);
@@ -318,11 +318,8 @@ private:
 
 }  // namespace
 
-Result<std::unique_ptr<Synthesizer>> Synthesizer::create(std::shared_ptr<const ExemplarDatabase> db,
-                                                         const SynthesizerOptions& options) {
-    TERRASYNTH_REQUIRE(db != nullptr, "Synthesizer::create needs a database");
-    if (db->levels.empty()) return Status::error("database has no levels");
-    if (options.backend == SynthesisBackend::Reference) return std::unique_ptr<Synthesizer>(synth::createReferenceSynthesizer(db));
+Result<std::unique_ptr<Synthesizer>> cl::createOpenClSynthesizer(std::shared_ptr<const ExemplarDatabase> db,
+                                                                 const SynthesizerOptions& options) {
     auto synthesizer = std::make_unique<OpenClSynthesizer>(std::move(db));
     Status s = synthesizer->initialise(options);
     if (!s) return s;

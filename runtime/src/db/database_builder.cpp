@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 #include "db/db_internal.h"
-#include "synth/hash.h"
+#include "core/hash.h"
 
 namespace terrasynth {
 namespace {
@@ -179,7 +179,7 @@ void buildLevel(int level, LevelInputs& in, const DatabaseBuildOptions& options,
     for (size_t t = 0; t < by_type.size(); ++t) {
         if (by_type[t].empty()) continue;
         for (int k = 0; k < kTypeSeedCount; ++k)
-            out.type_seeds[t].push_back(by_type[t][synth::hash3(k, static_cast<int>(t), 0x7e5u + level) % by_type[t].size()]);
+            out.type_seeds[t].push_back(by_type[t][core::hash3(k, static_cast<int>(t), 0x7e5u + level) % by_type[t].size()]);
     }
 }
 

@@ -18,7 +18,7 @@
 #include <limits>
 
 #include "db/db_internal.h"
-#include "synth/hash.h"
+#include "core/hash.h"
 
 namespace terrasynth::db {
 namespace {
@@ -110,7 +110,7 @@ private:
     size_t split(size_t lo, size_t hi, uint32_t node) {
         float direction[kMatchModes];
         for (int d = 0; d < kMatchModes; ++d)
-            direction[d] = synth::hashSigned(synth::hash3(tree_, static_cast<int>(node) * kMatchModes + d, in_.salt ^ 0x7ee5u));
+            direction[d] = core::hashSigned(core::hash3(tree_, static_cast<int>(node) * kMatchModes + d, in_.salt ^ 0x7ee5u));
         for (size_t i = lo; i < hi; ++i) {
             float sum = 0.0f;
             for (int d = 0; d < kMatchModes; ++d) sum += points_[i].f[d] * direction[d];
@@ -273,7 +273,7 @@ void sweep(const PatchMatchInput& in, int iterations, int threads, std::vector<u
                         int count = 0;
                         uint32_t k = 0;
                         for (int r = max_radius; r >= 1; r /= 2, ++k) {
-                            const uint32_t h = synth::hash3(static_cast<int>(p), static_cast<int>(it * 64 + k), in.salt ^ 0x9e3779b9u);
+                            const uint32_t h = core::hash3(static_cast<int>(p), static_cast<int>(it * 64 + k), in.salt ^ 0x9e3779b9u);
                             const int qx = bx + static_cast<int>(h % (2 * r + 1)) - r;
                             const int qy = by + static_cast<int>((h >> 16) % (2 * r + 1)) - r;
                             if (qx < 0 || qy < 0 || qx >= in.width || qy >= in.height) continue;
@@ -338,7 +338,7 @@ std::vector<uint32_t> patchMatch(const PatchMatchInput& in, int iterations, int 
     if (pool.empty()) return field;
     auto randomEligible = [&](uint32_t p, uint32_t round) {
         for (uint32_t attempt = 0;; ++attempt) {
-            const uint32_t q = pool[synth::hash3(static_cast<int>(p), static_cast<int>(attempt + 64 * round), in.salt) % pool.size()];
+            const uint32_t q = pool[core::hash3(static_cast<int>(p), static_cast<int>(attempt + 64 * round), in.salt) % pool.size()];
             if (separated(in, p, q) || attempt > 32) return q;
         }
     };

@@ -4,9 +4,10 @@
 #include <cmath>
 
 #include "synth/curve_field.h"
-#include "synth/hash.h"
+#include "core/hash.h"
 
 namespace terrasynth::synth {
+using core::levelSalt;
 
 void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
                      float sign, std::vector<float>& blend) {

@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "synth/hash.h"
+#include "core/hash.h"
 
 namespace terrasynth::synth {
+using core::hash3;
+using core::hashSigned;
+using core::levelSalt;
 namespace {
 
 struct Vec4 {

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-namespace terrasynth::synth {
+namespace terrasynth::core {
 
 inline uint32_t hashU32(uint32_t x) {
     x ^= x >> 16;
@@ -26,7 +26,7 @@ inline float hashSigned(uint32_t h) {
 
 }  // namespace terrasynth::synth
 
-namespace terrasynth::synth {
+namespace terrasynth::core {
 
 // Salt for one use of randomness at one level: purpose 0 = initialisation, 1/2 = jitter x/y.
 inline uint32_t levelSalt(uint32_t seed, int level, uint32_t purpose) {
