@@ -25,10 +25,6 @@ struct ExportArgs {
     bool quantize = false, colors = false;
 };
 
-bool endsWith(const std::string& s, const std::string& tail) {
-    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
 // Where heights (and types) come from: a project's Terrain or a heightfield file.
 struct Input {
     HeightSource heights;
@@ -86,7 +82,7 @@ Status runExport(const ExportArgs& a) {
         for (const std::string& p : *paths) std::printf("wrote %s\n", p.c_str());
     }
 
-    if (!endsWith(a.output, ".glb") && !endsWith(a.output, ".gltf")) {
+    if (!isGltfPath(a.output)) {
         auto field = input->heights(region, a.level);
         if (!field) return field.status();
         const double origin_x = region.x * field->meters_per_pixel_x, origin_y = -region.y * field->meters_per_pixel_y;

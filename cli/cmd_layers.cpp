@@ -3,10 +3,8 @@
 // with -o, applies it without running synthesis: to --apply's heightmap, to an imported-heightmap
 // base's own grid, or (fractal/blank base) to a --size grid.
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,23 +24,6 @@ struct LayersArgs {
     bool json = false;
 };
 
-std::string folderOf(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? "." : path.substr(0, slash);
-}
-
-// Reads only the "layers" key of the project, so this works on any .tsyn (or a bare JSON array).
-Result<LayerStack> readStack(const std::string& path) {
-    auto bytes = readFileBytes(path);
-    if (!bytes) return bytes.status();
-    nlohmann::json doc = nlohmann::json::parse(*bytes, nullptr, /*allow_exceptions=*/false);
-    if (doc.is_discarded()) return Status::error(path + ": not valid JSON");
-    const nlohmann::json layers = doc.is_array() ? doc : doc.value("layers", nlohmann::json::array());
-    auto stack = parseLayerStack(layers, folderOf(path));
-    if (!stack) return stack.status().withContext(path);
-    return stack;
-}
-
 Result<Heightfield> gridFor(const LayersArgs& a, const LayerStack& stack) {
     if (!a.apply.empty()) {
         auto ex = readExemplar(a.apply);
@@ -50,13 +31,7 @@ Result<Heightfield> gridFor(const LayersArgs& a, const LayerStack& stack) {
         return std::move(ex->field);
     }
     if (stack.base.source == BaseSource::Heightmap && a.size.empty()) {
-        // The imported heightmap's own grid.
-        const std::string path = stack.base.path.empty() || stack.base.path[0] == '/'
-                                     ? stack.base.path
-                                     : stack.base_dir + "/" + stack.base.path;
-        auto ex = readExemplar(path);
-        if (!ex) return Status::error("layers[0].path: " + ex.message());
-        return std::move(ex->field);
+        return readBaseHeightmap(stack);  // the imported heightmap's own grid
     }
     if (stack.base.source == BaseSource::Synthesized)
         return Status::error("the stack's base is the synthesized terrain: give it with --apply base.png (or run "
@@ -68,9 +43,9 @@ Result<Heightfield> gridFor(const LayersArgs& a, const LayerStack& stack) {
 }
 
 void runLayers(const LayersArgs& a) {
-    auto stack = readStack(a.project);
+    auto stack = readLayerStack(a.project);
     if (!stack) return fail(kCommand, stack.message());
-    if (a.json) std::printf("%s\n", layerStackToJson(*stack).dump(2).c_str());
+    if (a.json) std::printf("%s\n", nlohmann::json::parse(layerStackToJson(*stack)).dump(2).c_str());
     else std::printf("%s", describeLayerStack(*stack).c_str());
     if (a.output.empty() && a.hillshade.empty()) return;
     auto grid = gridFor(a, *stack);

@@ -60,12 +60,6 @@ Status writeSourcesMap(const std::string& path, const SynthesisOutput& out, cons
     return writePng16(path, h.width, h.height, 3, rgb);
 }
 
-// Case-insensitive, as the heightmap writers are.
-bool endsWith(std::string text, const std::string& suffix) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // How close each point constraint's site in the window came to its height (s5.1), so a user can
 // check a project from the command line.
 void reportPointSites(const Terrain& terrain, const PixelWindow& window, const Heightfield& heights) {
@@ -150,9 +144,7 @@ void runCoherentEdit(const SynthArgs& args, const TerrainOptions& options, Terra
 
 void runSynth(const SynthArgs& args) {
     // Refuse an unwritable output format before spending time on synthesis.
-    if (!endsWith(args.output, ".png") && !endsWith(args.output, ".f32") && !endsWith(args.output, ".raw") &&
-        !endsWith(args.output, ".exr"))
-        return fail("synth", args.output + ": unknown heightmap extension (use .png, .f32, .raw or .exr)");
+    if (Status s = checkHeightfieldPath(args.output); !s) return fail("synth", s.message());
     auto loaded = projectWithOverrides(args.project, args);
     if (!loaded) return fail("synth", loaded.message());
     const Project& project = loaded.value();

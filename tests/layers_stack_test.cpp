@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "terrasynth/layers.h"
 #include "test_support.h"
 
@@ -12,7 +14,7 @@ namespace {
 
 using nlohmann::json;
 
-json richStack() {
+std::string richStack() {
     return json::parse(R"([
       {"type": "base", "source": "fbm", "seed": 9, "amplitude_m": 400, "wavelength_px": 128,
        "band_cuts_px": [8, 32], "weights": {"low": 1, "mid": 0.8, "high": 1.2}},
@@ -32,7 +34,7 @@ json richStack() {
        "strokes": [{"points": [[250, 330], [350, 300], [450, 320]], "base_v": 360, "width_px": 6}]},
       {"type": "group", "name": "merged", "layers": [
         {"type": "peak", "center": [100, 100], "height_m": -80, "spread_px": 8}]}
-    ])");
+    ])").dump();
 }
 
 TEST(LayersStack, JsonRoundTripsEveryLayerType) {
@@ -43,7 +45,7 @@ TEST(LayersStack, JsonRoundTripsEveryLayerType) {
     EXPECT_EQ(stack->layers[1].weights, (BandWeights{1, 0, 0}));  // ridge default: low band only
     EXPECT_EQ(stack->layers[2].weights.low, 0.0f);
     EXPECT_FALSE(stack->layers[4].visible);
-    const json once = layerStackToJson(*stack);
+    const std::string once = layerStackToJson(*stack);
     auto again = parseLayerStack(once, "/tmp");
     ASSERT_TRUE(again) << again.message();
     EXPECT_EQ(layerStackToJson(*again), once);
@@ -55,7 +57,7 @@ TEST(LayersStack, JsonRoundTripsEveryLayerType) {
 
 TEST(LayersStack, ParseErrorsNameTheField) {
     auto expectError = [](const char* text, const char* fragment) {
-        auto r = parseLayerStack(json::parse(text), "");
+        auto r = parseLayerStack(text, "");
         ASSERT_FALSE(r) << text;
         EXPECT_NE(r.message().find(fragment), std::string::npos) << r.message();
     };

@@ -10,8 +10,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "terrasynth/status.h"
 
 namespace terrasynth {
@@ -100,11 +98,36 @@ struct SynthesisConstraints {
     bool shapesTerrain() const { return !points.empty() || !curves.empty() || !types.empty(); }
 };
 
-// Parses the "constraints" object of a project (docs/project-format.md) against the database's type
-// names. `extent_*` is the project's extent (type strokes and masks are relative to its origin).
-// Errors name the field: "constraints.points[1].radius_px: must be > 0".
-Result<SynthesisConstraints> parseConstraints(const nlohmann::json& constraints, const std::string& base_dir,
+// Paints a round brush of `radius_px` (> 0) level-0 pixels with `value` along the polyline `line`
+// (global level-0 pixels), clipped to the paint's rectangle: the type and freeze brushes of s5.2-5.3.
+void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius_px,
+                 uint8_t value);
+
+// Parses the "constraints" object of a project (JSON text, docs/project-format.md) against the
+// database's type and exemplar names. `extent_*` is the project's extent: coordinates in the JSON are
+// relative to its origin, masks and strokes paint over it; mask paths are relative to `base_dir`.
+// Errors name the field: "constraints.points[1].radius_px: must be in [0.001, 1000000], got 0".
+Result<SynthesisConstraints> parseConstraints(const std::string& constraints_json, const std::string& base_dir,
                                               const ExemplarDatabase& db, int64_t extent_x, int64_t extent_y,
                                               int extent_width, int extent_height);
+
+// The inverse of parseConstraints: the "constraints" object for `constraints` over the same extent,
+// with type painting and the freeze brush as 8-bit mask PNGs ("<mask_stem>.types.png" with a palette
+// naming type id + 1, "<mask_stem>.freeze.png" with 255 = frozen) that the caller writes beside the
+// project, so parseConstraints(constraintsToJson(c).json) == c up to the last bit of coordinates that
+// are not whole pixels. Point lifts (lift_m) are not part of a project and are not written.
+// Errors: a type or exemplar index the database does not have.
+struct ConstraintsJson {
+    std::string json;  // the "constraints" object, compact JSON text
+    struct Mask {
+        std::string file;  // mask_stem + suffix; the JSON names its base name (relative to the project)
+        int width = 0, height = 0;
+        std::vector<uint8_t> pixels;  // 8-bit gray, row-major
+    };
+    std::vector<Mask> masks;
+};
+Result<ConstraintsJson> constraintsToJson(const SynthesisConstraints& constraints, const ExemplarDatabase& db,
+                                          int64_t extent_x, int64_t extent_y, int extent_width, int extent_height,
+                                          const std::string& mask_stem);
 
 }  // namespace terrasynth

@@ -85,6 +85,9 @@ struct GltfExportStats {
     double quantum_m = 0.0;              // position quantisation step (quantized output), else 0
 };
 
+// Whether `path` names a glTF file: it ends in .glb or .gltf, in any letter case.
+bool isGltfPath(const std::string& path);
+
 // Writes `path` (.glb binary, or .gltf JSON plus <stem>.bin beside it) from the heights `source`
 // gives for options.region. Files are written to temporaries and renamed into place. Errors: the
 // source's error (with the window), bad options (message names the option), unwritable paths.

@@ -61,8 +61,12 @@ Status writeHeightfieldPng16(const std::string& path, const Heightfield& field,
 Status writeHeightfieldF32(const std::string& path, const Heightfield& field);
 // OpenEXR single channel "Y" float; an error when built without OpenEXR.
 Status writeHeightfieldExr(const std::string& path, const Heightfield& field);
-// Picks the writer from the extension (.png, .f32/.raw, .exr); an error names unknown extensions.
+// Picks the writer from the extension (.png, .f32/.raw, .exr, any letter case); an error names
+// unknown extensions.
 Status writeHeightfield(const std::string& path, const Heightfield& field);
+// What writeHeightfield would say about `path`'s extension, without touching the disk (check before
+// spending time on what is to be written).
+Status checkHeightfieldPath(const std::string& path);
 bool openExrAvailable();
 bool gdalAvailable();
 

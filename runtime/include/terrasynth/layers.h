@@ -32,8 +32,6 @@
 #include <variant>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "terrasynth/heightfield.h"
 #include "terrasynth/layers_bands.h"
 #include "terrasynth/layers_tools.h"
@@ -101,11 +99,17 @@ struct LayerStack {
     std::string base_dir;           // folder relative paths are resolved against ("" = cwd)
 };
 
-// Parses the `layers` array. `base_dir` resolves relative paths (heightmaps, external DEMs).
-// Errors name the element and field: "layers[2].spread_px: must be > 0".
-Result<LayerStack> parseLayerStack(const nlohmann::json& layers, const std::string& base_dir);
-// The inverse of parseLayerStack: parse(layerStackToJson(s)) == s.
-nlohmann::json layerStackToJson(const LayerStack& stack);
+// Parses the `layers` array (JSON text). `base_dir` resolves relative paths (heightmaps, external
+// DEMs). Errors name the element and field: "layers[2].spread_px: must be > 0".
+Result<LayerStack> parseLayerStack(const std::string& layers_json, const std::string& base_dir);
+// The inverse of parseLayerStack, as compact JSON text: parse(layerStackToJson(s)) == s.
+std::string layerStackToJson(const LayerStack& stack);
+// The stack of a project file's "layers" array, or of a file holding a bare layers array; relative
+// paths resolve against the file's folder. Errors name the file.
+Result<LayerStack> readLayerStack(const std::string& path);
+// The heightmap of a BaseSource::Heightmap base on its own grid (size and spacing of the file), for
+// tools that apply a stack without synthesis. Errors name "layers[0].path" and the file.
+Result<Heightfield> readBaseHeightmap(const LayerStack& stack);
 // Checks one layer as parseLayerStack would (message prefixed with `context`).
 Status validateEditLayer(const EditLayer& layer, const std::string& context = "layer");
 

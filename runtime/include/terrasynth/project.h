@@ -9,8 +9,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "terrasynth/synthesizer.h"
 
 namespace terrasynth {
@@ -28,12 +26,17 @@ struct Project {
     // synthesis.hold_point_heights: lift point constraints so finished sites land on their heights
     // (liftPointConstraints in synthesizer.h). false = the paper's plain targets.
     bool hold_point_heights = true;
-    // Sections owned by other modules, kept verbatim so loading and saving never drops them.
-    nlohmann::json constraints = nlohmann::json::object();
-    nlohmann::json layers = nlohmann::json::array();
+    // Sections owned by other modules, as compact JSON text, kept verbatim so loading and saving
+    // never drops them: the "constraints" object (parseConstraints, constraints.h) and the "layers"
+    // array (parseLayerStack, layers.h).
+    std::string constraints_json = "{}";
+    std::string layers_json = "[]";
 
     // Where the database cache lives: `database` if set, else "<project stem>.tsdb" beside it.
     std::string databaseCachePath() const;
+    // The folder relative paths inside the project resolve against ("." for a new project).
+    std::string folder() const;
+    bool hasLayers() const { return layers_json != "[]"; }
 };
 
 // Errors name the file and the JSON field, e.g. "world.tsyn: synthesis.jitter: must be in [0, 1]".

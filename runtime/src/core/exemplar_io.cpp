@@ -37,7 +37,7 @@ Status readTypeMask(const nlohmann::json& j, const std::string& sidecar, Exempla
     auto it = j.find("type_mask");
     if (it == j.end()) return Status::ok();
     if (!it->is_string()) return Status::error(sidecar + ": field \"type_mask\" must be a file name");
-    const std::string mask_path = detail::directoryOf(sidecar) + it->get<std::string>();
+    const std::string mask_path = detail::resolveRelative(detail::folderOf(sidecar), it->get<std::string>());
     auto mask = readPng8(mask_path);
     if (!mask) return mask.status();
     if (mask->width != exemplar->field.width || mask->height != exemplar->field.height || mask->channels != 1)

@@ -19,11 +19,6 @@ nlohmann::json spacingJson(const Heightfield& field) {
     return nlohmann::json::array({field.meters_per_pixel_x, field.meters_per_pixel_y});
 }
 
-std::string baseName(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 }  // namespace
 
 bool openExrAvailable() {
@@ -43,7 +38,7 @@ Status writeHeightfieldPng16(const std::string& path, const Heightfield& field, 
     for (size_t i = 0; i < samples.size(); ++i)
         samples[i] = static_cast<uint16_t>(std::lround((field.heights[i] - range.min) / span * 65535.0));
     nlohmann::json sidecar = {
-        {"file", baseName(path)},
+        {"file", detail::baseName(path)},
         {"width", field.width},
         {"height", field.height},
         {"height_min_m", range.min},
@@ -69,7 +64,7 @@ Status writeHeightfieldF32(const std::string& path, const Heightfield& field) {
     Status valid = validateHeightfield(field);
     if (!valid) return valid.withContext(path);
     nlohmann::json sidecar = {
-        {"file", baseName(path)},
+        {"file", detail::baseName(path)},
         {"width", field.width},
         {"height", field.height},
         {"format", "float32 little-endian, metres, row-major, row 0 north"},
@@ -108,12 +103,18 @@ Status writeHeightfieldExr(const std::string& path, const Heightfield& field) {
 #endif
 }
 
+Status checkHeightfieldPath(const std::string& path) {
+    const std::string ext = detail::lowerExtension(path);
+    if (ext == ".png" || ext == ".f32" || ext == ".raw" || ext == ".exr") return Status::ok();
+    return Status::error(path + ": unknown heightmap extension \"" + ext + "\" (use .png, .f32, .raw or .exr)");
+}
+
 Status writeHeightfield(const std::string& path, const Heightfield& field) {
+    if (Status s = checkHeightfieldPath(path); !s) return s;
     const std::string ext = detail::lowerExtension(path);
     if (ext == ".png") return writeHeightfieldPng16(path, field);
-    if (ext == ".f32" || ext == ".raw") return writeHeightfieldF32(path, field);
     if (ext == ".exr") return writeHeightfieldExr(path, field);
-    return Status::error(path + ": unknown heightmap extension \"" + ext + "\" (use .png, .f32, .raw or .exr)");
+    return writeHeightfieldF32(path, field);
 }
 
 }  // namespace terrasynth

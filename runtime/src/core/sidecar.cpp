@@ -7,34 +7,6 @@
 
 namespace terrasynth::detail {
 
-std::string sidecarPathFor(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    const size_t dot = path.find_last_of('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return path + ".json";
-    return path.substr(0, dot) + ".json";
-}
-
-std::string fileStem(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-    const size_t dot = name.find_last_of('.');
-    return dot == std::string::npos ? name : name.substr(0, dot);
-}
-
-std::string directoryOf(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
-
-std::string lowerExtension(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    const size_t dot = path.find_last_of('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-    std::string ext = path.substr(dot);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return ext;
-}
-
 Result<nlohmann::json> readJsonFile(const std::string& path) {
     auto bytes = readFileBytes(path);
     if (!bytes) return bytes.status();
@@ -51,28 +23,6 @@ Result<double> requireNumber(const nlohmann::json& j, const char* key, const std
     const double v = it->get<double>();
     if (!std::isfinite(v)) return Status::error(file + ": field \"" + key + "\" is not finite");
     return v;
-}
-
-std::string compactNumber(double v) {
-    std::string s = std::to_string(v);
-    while (s.find('.') != std::string::npos && (s.back() == '0' || s.back() == '.')) {
-        const bool dot = s.back() == '.';
-        s.pop_back();
-        if (dot) break;
-    }
-    return s;
-}
-
-Result<std::optional<double>> readNumberInRange(const nlohmann::json& object, const char* key,
-                                                const std::string& field, double lo, double hi) {
-    auto it = object.find(key);
-    if (it == object.end()) return std::optional<double>();
-    if (!it->is_number()) return Status::error(field + ": must be a number");
-    const double v = it->get<double>();
-    if (!std::isfinite(v) || v < lo || v > hi)
-        return Status::error(field + ": must be in [" + compactNumber(lo) + ", " + compactNumber(hi) + "], got " +
-                             compactNumber(v));
-    return std::optional<double>(v);
 }
 
 Status readSpacing(const nlohmann::json& j, const std::string& file, double* x, double* y) {

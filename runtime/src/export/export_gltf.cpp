@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "export/colors.h"
+#include "core/paths.h"
 #include "export/export_internal.h"
 
 namespace terrasynth {
@@ -227,6 +228,10 @@ private:
 };
 
 }  // namespace
+
+bool isGltfPath(const std::string& path) {
+    return detail::hasExtension(path, ".glb") || detail::hasExtension(path, ".gltf");
+}
 
 Result<GltfExportStats> exportGltf(const std::string& path, const HeightSource& source, const GltfExportOptions& options) {
     if (Status s = checkOptions(options); !s) return s;

@@ -8,20 +8,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/paths.h"
 #include "export/export_internal.h"
 
 namespace terrasynth::export_detail {
 
 namespace {
-
-bool endsWith(const std::string& s, const std::string& tail) {
-    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
-std::string baseName(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? path : path.substr(slash + 1);
-}
 
 // A file written under a temporary name and renamed into place on commit().
 class AtomicFile {
@@ -75,8 +67,8 @@ void writeLe32(AtomicFile& file, uint32_t v) {
 
 Status writeGltfFiles(const std::string& path, tinygltf::Model& model, const BinaryLayout& layout,
                       size_t* json_bytes, size_t* file_bytes) {
-    const bool binary = endsWith(path, ".glb");
-    if (!binary && !endsWith(path, ".gltf")) return Status::error(path + ": the output must end in .glb or .gltf");
+    if (!isGltfPath(path)) return Status::error(path + ": the output must end in .glb or .gltf");
+    const bool binary = detail::hasExtension(path, ".glb");
     tinygltf::TinyGLTF writer;
     std::ostringstream stream;
     if (!writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/false, /*writeBinary=*/false))
@@ -88,10 +80,8 @@ Status writeGltfFiles(const std::string& path, tinygltf::Model& model, const Bin
     nlohmann::json buffer = {{"byteLength", layout.total_bytes}};
     std::string bin_path;
     if (!binary) {
-        std::string stem = baseName(path);
-        stem = stem.substr(0, stem.size() - 5);
-        buffer["uri"] = stem + ".bin";
-        bin_path = path.substr(0, path.size() - baseName(path).size()) + stem + ".bin";
+        bin_path = detail::replaceExtension(path, ".bin");
+        buffer["uri"] = detail::baseName(bin_path);
     }
     json["buffers"] = nlohmann::json::array({buffer});
     std::string text = json.dump();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/paths.h"
 #include "terrasynth/heightfield_io.h"
 
 namespace terrasynth::layers {
@@ -29,11 +30,6 @@ Heightfield resizeTo(const Heightfield& in, int w, int h, const Heightfield& lik
 }
 
 }  // namespace
-
-std::string resolvePath(const std::string& path, const std::string& base_dir) {
-    if (path.empty() || path[0] == '/' || base_dir.empty()) return path;
-    return base_dir + "/" + path;
-}
 
 bool readsBelow(const ToolParams& tool) {
     return std::holds_alternative<PasteParams>(tool) || std::holds_alternative<HoleFillParams>(tool) ||
@@ -101,7 +97,7 @@ Result<std::shared_ptr<LayerContent>> pasteContent(const PasteParams& p, const H
     if (p.source == "terrain") {
         source = below;
     } else {
-        auto ex = readExemplar(resolvePath(p.source, base_dir));
+        auto ex = readExemplar(detail::resolveRelative(base_dir, p.source));
         if (!ex) return Status::error("source: " + ex.message());
         // Keep real-world feature sizes: bring the DEM to the terrain's spacing first.
         source = resampleToSpacing(ex->field, below.meters_per_pixel_x);
@@ -171,7 +167,7 @@ Result<Heightfield> baseHeights(const BaseLayer& base, const Heightfield& synthe
             return f;
         }
         case BaseSource::Heightmap: {
-            auto ex = readExemplar(resolvePath(base.path, base_dir));
+            auto ex = readExemplar(detail::resolveRelative(base_dir, base.path));
             if (!ex) return Status::error("path: " + ex.message());
             return resizeTo(ex->field, w, h, synthesized);
         }
@@ -180,3 +176,14 @@ Result<Heightfield> baseHeights(const BaseLayer& base, const Heightfield& synthe
 }
 
 }  // namespace terrasynth::layers
+
+namespace terrasynth {
+
+Result<Heightfield> readBaseHeightmap(const LayerStack& stack) {
+    if (stack.base.source != BaseSource::Heightmap) return Status::error("layers[0]: the base is not a heightmap");
+    auto exemplar = readExemplar(detail::resolveRelative(stack.base_dir, stack.base.path));
+    if (!exemplar) return exemplar.status().withContext("layers[0].path");
+    return std::move(exemplar->field);
+}
+
+}  // namespace terrasynth

@@ -28,6 +28,4 @@ Result<std::shared_ptr<LayerContent>> holeFillContent(const HoleFillParams& p, c
 // The base heights on the grid of `synthesized` (which is returned for BaseSource::Synthesized).
 Result<Heightfield> baseHeights(const BaseLayer& base, const Heightfield& synthesized, const std::string& base_dir);
 
-std::string resolvePath(const std::string& path, const std::string& base_dir);
-
 }  // namespace terrasynth::layers

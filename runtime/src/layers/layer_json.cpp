@@ -1,5 +1,9 @@
 #include "layers/layer_json.h"
 
+#include "core/json_reader.h"
+#include "core/paths.h"
+#include "terrasynth/heightfield_io.h"
+
 #include <cmath>
 #include <functional>
 #include <set>
@@ -9,105 +13,18 @@ namespace {
 
 using nlohmann::json;
 
-// Reads one JSON object, remembering the first error (named "<where>.<field>: problem") and
-// rejecting unknown fields so typos do not pass silently.
-class Reader {
-public:
-    Reader(const json& j, std::string where) : j_(j), where_(std::move(where)) {
-        if (!j_.is_object()) fail("", "must be an object");
-    }
-    bool has(const char* key) const { return j_.is_object() && j_.contains(key); }
-    double num(const char* key, double def, std::function<bool(double)> ok = nullptr, const char* rule = "") {
-        use(key);
-        if (!has(key)) return def;
-        const json& v = j_.at(key);
-        if (!v.is_number()) return fail(key, "must be a number"), def;
-        const double d = v.get<double>();
-        if (!std::isfinite(d) || (ok && !ok(d))) return fail(key, rule), def;
-        return d;
-    }
-    int integer(const char* key, int def, int lo, int hi) {
-        use(key);
-        if (!has(key)) return def;
-        const json& v = j_.at(key);
-        if (!v.is_number_integer()) return fail(key, "must be an integer"), def;
-        const long long i = v.get<long long>();
-        if (i < lo || i > hi) return fail(key, "must be in " + std::to_string(lo) + ".." + std::to_string(hi)), def;
-        return static_cast<int>(i);
-    }
-    uint64_t seed(const char* key, uint64_t def) {
-        use(key);
-        if (!has(key)) return def;
-        const json& v = j_.at(key);
-        if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<long long>() >= 0))
-            return fail(key, "must be a non-negative integer"), def;
-        return v.get<uint64_t>();
-    }
-    bool boolean(const char* key, bool def) {
-        use(key);
-        if (!has(key)) return def;
-        if (!j_.at(key).is_boolean()) return fail(key, "must be true or false"), def;
-        return j_.at(key).get<bool>();
-    }
-    std::string str(const char* key, const std::string& def) {
-        use(key);
-        if (!has(key)) return def;
-        if (!j_.at(key).is_string()) return fail(key, "must be a string"), def;
-        return j_.at(key).get<std::string>();
-    }
-    const json* child(const char* key) {
-        use(key);
-        return has(key) ? &j_.at(key) : nullptr;
-    }
-    std::vector<double> numbers(const char* key, size_t min_n, size_t max_n) {
-        use(key);
-        std::vector<double> out;
-        if (!has(key)) return fail(key, "is required"), out;
-        const json& v = j_.at(key);
-        if (!v.is_array() || v.size() < min_n || v.size() > max_n)
-            return fail(key, "must be an array of " + std::to_string(min_n) +
-                                 (min_n == max_n ? "" : ".." + std::to_string(max_n)) + " numbers"), out;
-        for (const json& e : v) {
-            if (!e.is_number() || !std::isfinite(e.get<double>())) return fail(key, "must contain only numbers"), out;
-            out.push_back(e.get<double>());
-        }
-        return out;
-    }
-    Point2 point(const json& v, const std::string& field) {
-        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
-            return fail(field, "must be a point [x, y]"), Point2{};
-        return {v[0].get<double>(), v[1].get<double>()};
-    }
-    Line2 line(const json* v, const std::string& field) {
-        if (!v || !v->is_array() || v->size() != 2) return fail(field, "must be a line [[x, y], [x, y]]"), Line2{};
-        return {point((*v)[0], field), point((*v)[1], field)};
-    }
-    void require(const char* key) {
-        if (!has(key)) fail(key, "is required");
-    }
-    void failRaw(const std::string& message) {
-        if (error_.empty()) error_ = message;
-    }
-    void fail(const std::string& key, const std::string& problem) {
-        if (!error_.empty()) return;
-        error_ = where_ + (key.empty() ? "" : "." + key) + ": " + problem;
-    }
-    // Call last: reports unknown fields.
-    Status finish() {
-        if (error_.empty() && j_.is_object())
-            for (auto it = j_.begin(); it != j_.end(); ++it)
-                if (!used_.count(it.key())) fail(it.key(), "unknown field");
-        return error_.empty() ? Status::ok() : Status::error(error_);
-    }
-    const std::string& where() const { return where_; }
-    void use(const char* key) { used_.insert(key); }
+using Reader = detail::JsonReader;
 
-private:
-    const json& j_;
-    std::string where_;
-    std::set<std::string> used_;
-    std::string error_;
-};
+Point2 readPoint(Reader& r, const json& v, const std::string& field) {
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+        return r.fail(field, "must be a point [x, y]"), Point2{};
+    return {v[0].get<double>(), v[1].get<double>()};
+}
+
+Line2 readLine(Reader& r, const json* v, const std::string& field) {
+    if (!v || !v->is_array() || v->size() != 2) return r.fail(field, "must be a line [[x, y], [x, y]]"), Line2{};
+    return {readPoint(r, (*v)[0], field), readPoint(r, (*v)[1], field)};
+}
 
 auto positive = [](double v) { return v > 0; };
 
@@ -118,10 +35,10 @@ BandWeights readWeights(Reader& r, BandWeights def) {
     auto in = [](double v) { return v >= 0 && v <= kMaxBandWeight; };
     const char* rule = "must be in [0, 4]";
     BandWeights out;
-    out.low = static_cast<float>(wr.num("low", def.low, in, rule));
-    out.mid = static_cast<float>(wr.num("mid", def.mid, in, rule));
-    out.high = static_cast<float>(wr.num("high", def.high, in, rule));
-    if (Status s = wr.finish(); !s) r.failRaw(s.message());
+    out.low = static_cast<float>(wr.numberIf("low", def.low, in, rule));
+    out.mid = static_cast<float>(wr.numberIf("mid", def.mid, in, rule));
+    out.high = static_cast<float>(wr.numberIf("high", def.high, in, rule));
+    if (Status s = wr.finish(); !s) r.failWith(s.message());
     return out;
 }
 
@@ -130,7 +47,7 @@ Region readRegion(Reader& r, const char* key) {
     const json* v = r.child(key);
     if (!v) return r.fail(key, "is required"), reg;
     Reader rr(*v, r.where() + "." + key);
-    const std::string shape = rr.str("shape", "ellipse");
+    const std::string shape = rr.string("shape", "ellipse");
     if (shape == "rect") reg.shape = RegionShape::Rect;
     else if (shape != "ellipse") rr.fail("shape", "must be \"ellipse\" or \"rect\"");
     const std::vector<double> rect = rr.numbers("rect", 4, 4);
@@ -138,19 +55,19 @@ Region readRegion(Reader& r, const char* key) {
         reg = Region{reg.shape, rect[0], rect[1], rect[2], rect[3]};
         if (!(rect[2] >= 1 && rect[3] >= 1)) rr.fail("rect", "width and height must be >= 1");
     }
-    if (Status s = rr.finish(); !s) r.failRaw(s.message());
+    if (Status s = rr.finish(); !s) r.failWith(s.message());
     return reg;
 }
 
 void readFractalFields(Reader& r, FractalParams& f) {
-    f.seed = r.seed("seed", f.seed);
-    f.amplitude_m = r.num("amplitude_m", f.amplitude_m);
-    f.offset_m = r.num("offset_m", f.offset_m);
-    f.wavelength_px = r.num("wavelength_px", f.wavelength_px);
+    f.seed = r.unsignedInteger("seed", f.seed);
+    f.amplitude_m = r.numberIf("amplitude_m", f.amplitude_m);
+    f.offset_m = r.numberIf("offset_m", f.offset_m);
+    f.wavelength_px = r.numberIf("wavelength_px", f.wavelength_px);
     f.octaves = r.integer("octaves", f.octaves, 1, 16);
-    f.gain = r.num("gain", f.gain);
-    f.lacunarity = r.num("lacunarity", f.lacunarity);
-    f.roughness = r.num("roughness", f.roughness);
+    f.gain = r.numberIf("gain", f.gain);
+    f.lacunarity = r.numberIf("lacunarity", f.lacunarity);
+    f.roughness = r.numberIf("roughness", f.roughness);
     if (Status s = validateFractal(f); !s) {
         const std::string m = s.message();
         r.fail(m.substr(0, m.find(':')), m.substr(m.find(':') + 2));
@@ -190,11 +107,11 @@ ToolParams readPeak(Reader& r) {
     const std::vector<double> c = r.numbers("center", 2, 2);
     if (c.size() == 2) p.center_x = c[0], p.center_y = c[1];
     r.require("height_m");
-    p.height_m = r.num("height_m", p.height_m);
-    p.spread_px = r.num("spread_px", p.spread_px, positive, "must be > 0");
-    p.skewness = r.num("skewness", p.skewness);
-    p.kurtosis = r.num("kurtosis", p.kurtosis);
-    p.skew_azimuth_deg = r.num("skew_azimuth_deg", p.skew_azimuth_deg);
+    p.height_m = r.numberIf("height_m", p.height_m);
+    p.spread_px = r.numberIf("spread_px", p.spread_px, positive, "must be > 0");
+    p.skewness = r.numberIf("skewness", p.skewness);
+    p.kurtosis = r.numberIf("kurtosis", p.kurtosis);
+    p.skew_azimuth_deg = r.numberIf("skew_azimuth_deg", p.skew_azimuth_deg);
     auto solved = solvePeakShape(p);
     if (!solved) adopt(r, solved.status());
     return p;
@@ -207,7 +124,7 @@ ToolParams readRidge(Reader& r) {
         r.fail("points", "must be an array of [x, y] points");
     } else {
         for (size_t i = 0; i < pts->size(); ++i) {
-            const Point2 q = r.point((*pts)[i], "points[" + std::to_string(i) + "]");
+            const Point2 q = readPoint(r, (*pts)[i], "points[" + std::to_string(i) + "]");
             p.points.push_back({q.x, q.y});
         }
     }
@@ -215,24 +132,24 @@ ToolParams readRidge(Reader& r) {
     if (prof && prof->is_number()) p.profile_m = {prof->get<double>()};
     else if (prof && prof->is_array()) p.profile_m = r.numbers("profile_m", 1, 100000);
     else r.fail("profile_m", "must be a height or an array of heights");
-    p.width_px = r.num("width_px", p.width_px, positive, "must be > 0");
+    p.width_px = r.numberIf("width_px", p.width_px, positive, "must be > 0");
     adopt(r, validateRidge(p));
     return p;
 }
 
 ToolParams readPaste(Reader& r) {
     PasteParams p;
-    p.source = r.str("source", p.source);
+    p.source = r.string("source", p.source);
     if (p.source.empty()) r.fail("source", "must be \"terrain\" or a DEM path");
     const std::vector<double> s = r.numbers("source_xy", 2, 2);
     if (s.size() == 2) p.source_x = s[0], p.source_y = s[1];
     p.dest = readRegion(r, "dest");
-    const std::string blend = r.str("blend", "max_gradient");
+    const std::string blend = r.string("blend", "max_gradient");
     if (blend == "replace") p.blend = PasteBlend::Replace;
     else if (blend != "max_gradient") r.fail("blend", "must be \"max_gradient\" or \"replace\"");
     p.match_height = r.boolean("match_height", p.match_height);
-    p.vertical_scale = r.num("vertical_scale", p.vertical_scale, [](double v) { return v > 0 && v <= 10; }, "must be in (0, 10]");
-    p.feather_px = r.num("feather_px", p.feather_px, [](double v) { return v >= 0 && v <= 1e4; }, "must be >= 0");
+    p.vertical_scale = r.numberIf("vertical_scale", p.vertical_scale, [](double v) { return v > 0 && v <= 10; }, "must be in (0, 10]");
+    p.feather_px = r.numberIf("feather_px", p.feather_px, [](double v) { return v >= 0 && v <= 1e4; }, "must be >= 0");
     return p;
 }
 
@@ -242,9 +159,9 @@ ToolParams readHoleFill(Reader& r) {
     p.patch_px = r.integer("patch_px", p.patch_px, 8, 128);
     p.overlap_px = r.integer("overlap_px", p.overlap_px, 2, 64);
     if (p.overlap_px > p.patch_px / 2) r.fail("overlap_px", "must be at most patch_px/2");
-    p.seed = r.seed("seed", p.seed);
+    p.seed = r.unsignedInteger("seed", p.seed);
     p.candidates = r.integer("candidates", p.candidates, 16, 20000);
-    p.guide_weight = r.num("guide_weight", p.guide_weight, [](double v) { return v >= 0 && v < 1; }, "must be in [0, 1)");
+    p.guide_weight = r.numberIf("guide_weight", p.guide_weight, [](double v) { return v >= 0 && v < 1; }, "must be in [0, 1)");
     if (const json* c = r.child("choices")) {
         p.choices.clear();
         if (!c->is_array() || c->empty()) r.fail("choices", "must be a non-empty array of picks 0..2");
@@ -262,18 +179,18 @@ ToolParams readHoleFill(Reader& r) {
 
 ToolParams readPerspective(Reader& r) {
     PerspectiveParams p;
-    p.reference_image = r.str("reference_image", "");
+    p.reference_image = r.string("reference_image", "");
     PerspectiveCanvas& c = p.canvas;
     const std::vector<double> size = r.numbers("image_size", 2, 2);
     if (size.size() == 2) c.image_width = static_cast<int>(size[0]), c.image_height = static_cast<int>(size[1]);
-    c.horizon = r.line(r.child("horizon"), "horizon");
+    c.horizon = readLine(r, r.child("horizon"), "horizon");
     if (const json* g = r.child("grid")) {
         Reader gr(*g, r.where() + ".grid");
-        c.grid_left = gr.line(gr.child("left"), "left");
-        c.grid_right = gr.line(gr.child("right"), "right");
-        c.grid_near = gr.line(gr.child("near"), "near");
-        c.grid_far = gr.line(gr.child("far"), "far");
-        if (Status s = gr.finish(); !s) r.failRaw(s.message());
+        c.grid_left = readLine(gr, gr.child("left"), "left");
+        c.grid_right = readLine(gr, gr.child("right"), "right");
+        c.grid_near = readLine(gr, gr.child("near"), "near");
+        c.grid_far = readLine(gr, gr.child("far"), "far");
+        if (Status s = gr.finish(); !s) r.failWith(s.message());
     } else {
         r.fail("grid", "is required (left, right, near and far lines)");
     }
@@ -281,9 +198,9 @@ ToolParams readPerspective(Reader& r) {
     if (!ground || !ground->is_array() || ground->size() != 4) {
         r.fail("ground", "must be 4 terrain points [near-left, near-right, far-right, far-left]");
     } else {
-        for (int i = 0; i < 4; ++i) c.ground[i] = r.point((*ground)[i], "ground[" + std::to_string(i) + "]");
+        for (int i = 0; i < 4; ++i) c.ground[i] = readPoint(r, (*ground)[i], "ground[" + std::to_string(i) + "]");
     }
-    c.camera_height_m = r.num("camera_height_m", c.camera_height_m, positive, "must be > 0");
+    c.camera_height_m = r.numberIf("camera_height_m", c.camera_height_m, positive, "must be > 0");
     const json* strokes = r.child("strokes");
     if (!strokes || !strokes->is_array()) {
         r.fail("strokes", "must be an array of strokes");
@@ -296,10 +213,10 @@ ToolParams readPerspective(Reader& r) {
         const json* pts = sr.child("points");
         if (!pts || !pts->is_array()) sr.fail("points", "must be an array of [u, v] image points");
         else
-            for (size_t k = 0; k < pts->size(); ++k) st.points.push_back(sr.point((*pts)[k], "points"));
-        if (sr.has("base_v")) st.base_v = sr.num("base_v", 0.0);
-        st.width_px = sr.num("width_px", st.width_px, positive, "must be > 0");
-        if (Status s = sr.finish(); !s) r.failRaw(s.message());
+            for (size_t k = 0; k < pts->size(); ++k) st.points.push_back(readPoint(sr, (*pts)[k], "points"));
+        if (sr.has("base_v")) st.base_v = sr.numberIf("base_v", 0.0);
+        st.width_px = sr.numberIf("width_px", st.width_px, positive, "must be > 0");
+        if (Status s = sr.finish(); !s) r.failWith(s.message());
         p.strokes.push_back(std::move(st));
     }
     auto ridges = strokesToRidges(c, p.strokes);
@@ -311,12 +228,12 @@ ToolParams readNoise(Reader& r) {
     NoiseParams p;
     p.fractal.amplitude_m = 50.0;
     p.fractal.wavelength_px = 64.0;
-    const std::string kind = r.str("noise", "fbm");
+    const std::string kind = r.string("noise", "fbm");
     if (kind == "diamond_square") p.fractal.kind = FractalKind::DiamondSquare;
     else if (kind != "fbm") r.fail("noise", "must be \"fbm\" or \"diamond_square\"");
     readFractalFields(r, p.fractal);
     if (r.has("region")) p.region = readRegion(r, "region");
-    p.feather_px = r.num("feather_px", p.feather_px, [](double v) { return v >= 0 && v <= 1e4; }, "must be >= 0");
+    p.feather_px = r.numberIf("feather_px", p.feather_px, [](double v) { return v >= 0 && v <= 1e4; }, "must be >= 0");
     return p;
 }
 
@@ -332,8 +249,8 @@ Result<EditLayer> parseEditLayer(const json& j, const std::string& where) {
     Reader r(j, where);
     if (!j.is_object()) return r.finish();
     EditLayer layer;
-    const std::string type = r.str("type", "");
-    layer.name = r.str("name", type);
+    const std::string type = r.string("type", "");
+    layer.name = r.string("name", type);
     layer.visible = r.boolean("visible", true);
     if (type == "peak") layer.tool = readPeak(r);
     else if (type == "ridge") layer.tool = readRidge(r);
@@ -457,7 +374,7 @@ namespace terrasynth {
 
 using nlohmann::json;
 
-Result<LayerStack> parseLayerStack(const json& layers, const std::string& base_dir) {
+Result<LayerStack> layers::parseLayerStackJson(const json& layers, const std::string& base_dir) {
     LayerStack stack;
     stack.base_dir = base_dir;
     if (layers.is_null()) return stack;
@@ -467,16 +384,16 @@ Result<LayerStack> parseLayerStack(const json& layers, const std::string& base_d
         first = 1;
         layers::Reader r(layers[0], "layers[0]");
         r.use("type");
-        const std::string src = r.str("source", "synthesized");
+        const std::string src = r.string("source", "synthesized");
         BaseLayer& b = stack.base;
         if (src == "synthesized") b.source = BaseSource::Synthesized;
         else if (src == "heightmap") {
             b.source = BaseSource::Heightmap;
             r.require("path");
-            b.path = r.str("path", "");
+            b.path = r.string("path", "");
         } else if (src == "blank") {
             b.source = BaseSource::Blank;
-            b.height_m = r.num("height_m", 0.0, [](double v) { return std::fabs(v) <= 1e5; }, "must be within +-100000");
+            b.height_m = r.numberIf("height_m", 0.0, [](double v) { return std::fabs(v) <= 1e5; }, "must be within +-100000");
         } else if (src == "fbm" || src == "diamond_square") {
             b.source = BaseSource::Fractal;
             b.fractal.kind = src == "fbm" ? FractalKind::Fbm : FractalKind::DiamondSquare;
@@ -506,11 +423,31 @@ Result<LayerStack> parseLayerStack(const json& layers, const std::string& base_d
     return stack;
 }
 
-json layerStackToJson(const LayerStack& stack) {
+json layers::layerStackJson(const LayerStack& stack) {
     json out = json::array();
     out.push_back(layers::baseToJson(stack.base, stack.bands));
     for (const EditLayer& l : stack.layers) out.push_back(layers::editLayerToJson(l));
     return out;
+}
+
+Result<LayerStack> parseLayerStack(const std::string& layers_json, const std::string& base_dir) {
+    const json layers = json::parse(layers_json, nullptr, /*allow_exceptions=*/false);
+    if (layers.is_discarded()) return Status::error("layers: malformed JSON");
+    return layers::parseLayerStackJson(layers, base_dir);
+}
+
+std::string layerStackToJson(const LayerStack& stack) { return layers::layerStackJson(stack).dump(); }
+
+Result<LayerStack> readLayerStack(const std::string& path) {
+    auto text = readFileBytes(path);
+    if (!text) return text.status();
+    const json doc = json::parse(text.value(), nullptr, /*allow_exceptions=*/false);
+    if (doc.is_discarded()) return Status::error(path + ": malformed JSON");
+    if (!doc.is_array() && !doc.is_object()) return Status::error(path + ": expected a project object or a layers array");
+    const json layers = doc.is_array() ? doc : doc.value("layers", json::array());
+    auto stack = layers::parseLayerStackJson(layers, detail::folderOf(path));
+    if (!stack) return stack.status().withContext(path);
+    return stack;
 }
 
 Status validateEditLayer(const EditLayer& layer, const std::string& context) {

@@ -13,6 +13,10 @@ nlohmann::json baseToJson(const BaseLayer& base, const BandSplit& split);
 // `where` prefixes error messages, e.g. "layers[3]".
 Result<EditLayer> parseEditLayer(const nlohmann::json& j, const std::string& where);
 
+// parseLayerStack / layerStackToJson (layers.h) on parsed JSON.
+Result<LayerStack> parseLayerStackJson(const nlohmann::json& layers, const std::string& base_dir);
+nlohmann::json layerStackJson(const LayerStack& stack);
+
 // FNV-1a over bytes: a stable fingerprint for cache keys.
 uint64_t fingerprint(const std::string& bytes, uint64_t seed = 1469598103934665603ull);
 

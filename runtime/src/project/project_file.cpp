@@ -4,7 +4,8 @@
 
 #include <cmath>
 
-#include "core/sidecar.h"
+#include "core/json_reader.h"
+#include "core/paths.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/project.h"
 
@@ -12,47 +13,7 @@ namespace terrasynth {
 namespace {
 
 using nlohmann::json;
-
-std::string folderOf(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
-}
-
-std::string resolve(const std::string& base_dir, const std::string& path) {
-    if (path.empty() || path[0] == '/') return path;
-    return base_dir + "/" + path;
-}
-
-// Reads typed fields and remembers the first error, prefixed with the file and field path.
-class FieldReader {
-public:
-    FieldReader(const std::string& file) : file_(file) {}
-    bool ok() const { return status_.isOk(); }
-    Status status() const { return status_; }
-    void fail(const std::string& field, const std::string& problem) { fail(field + ": " + problem); }
-    void fail(const std::string& message) {
-        if (status_.isOk()) status_ = Status::error(file_ + ": " + message);
-    }
-    template <class T>
-    void number(const json& object, const char* key, const std::string& path, T* out, double lo, double hi) {
-        auto v = detail::readNumberInRange(object, key, path, lo, hi);
-        if (!v) return fail(v.message());
-        if (!v.value()) return;
-        if (std::is_integral_v<T> && *v.value() != std::floor(*v.value())) return fail(path, "must be a whole number");
-        *out = static_cast<T>(*v.value());
-    }
-    void knownKeys(const json& object, const std::string& path, std::initializer_list<const char*> keys) {
-        for (auto it = object.begin(); it != object.end(); ++it) {
-            bool known = false;
-            for (const char* k : keys) known = known || it.key() == k;
-            if (!known) fail(path.empty() ? it.key() : path + "." + it.key(), "unknown field");
-        }
-    }
-
-private:
-    std::string file_;
-    Status status_ = Status::ok();
-};
+using detail::JsonReader;
 
 }  // namespace
 
@@ -62,42 +23,38 @@ std::string Project::databaseCachePath() const {
     return stem + ".tsdb";
 }
 
+std::string Project::folder() const { return path.empty() ? std::string(".") : detail::folderOf(path); }
+
 Result<Project> parseProject(const std::string& text, const std::string& file, const std::string& base_dir) {
     json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
     if (j.is_discarded()) return Status::error(file + ": malformed JSON");
     if (!j.is_object()) return Status::error(file + ": expected a JSON object");
-    FieldReader r(file);
-    r.knownKeys(j, "", {"format", "version", "exemplars", "database", "database_levels", "meters_per_pixel", "size",
-                        "origin", "synthesis", "constraints", "layers"});
+    JsonReader r(j, "");
     Project p;
     p.path = file;
-    auto format = j.find("format");
-    if (format != j.end() && *format != "terrasynth-project") r.fail("format", "must be \"terrasynth-project\"");
-    int version = Project::kFormatVersion;
-    r.number(j, "version", "version", &version, 1, 1e9);
+    if (r.has("format") && r.string("format", "") != "terrasynth-project") r.fail("format", "must be \"terrasynth-project\"");
+    r.use("format");
+    const int64_t version = r.integer("version", Project::kFormatVersion, 1, 1000000000);
     if (version > Project::kFormatVersion)
         r.fail("version", "project version " + std::to_string(version) + " is newer than this build reads (" +
                               std::to_string(Project::kFormatVersion) + ")");
-    if (auto ex = j.find("exemplars"); ex != j.end()) {
+    if (const json* ex = r.child("exemplars")) {
         if (!ex->is_array() || ex->empty()) {
             r.fail("exemplars", "must be a non-empty array of file or folder paths");
         } else {
             for (size_t i = 0; i < ex->size(); ++i) {
                 if (!(*ex)[i].is_string()) r.fail("exemplars[" + std::to_string(i) + "]", "must be a path");
-                else p.exemplars.push_back(resolve(base_dir, (*ex)[i].get<std::string>()));
+                else p.exemplars.push_back(detail::resolveRelative(base_dir, (*ex)[i].get<std::string>()));
             }
         }
     }
-    if (auto db = j.find("database"); db != j.end()) {
-        if (!db->is_string()) r.fail("database", "must be a path");
-        else p.database = resolve(base_dir, db->get<std::string>());
-    }
-    if (p.exemplars.empty() && p.database.empty()) r.fail("exemplars", "give \"exemplars\" or \"database\"");
-    r.number(j, "database_levels", "database_levels", &p.database_levels, 1, 12);
-    r.number(j, "meters_per_pixel", "meters_per_pixel", &p.meters_per_pixel, 0, 1e5);
+    p.database = detail::resolveRelative(base_dir, r.string("database", ""));
+    if (r.ok() && p.exemplars.empty() && p.database.empty()) r.fail("exemplars", "give \"exemplars\" or \"database\"");
+    p.database_levels = static_cast<int>(r.integer("database_levels", p.database_levels, 1, 12));
+    p.meters_per_pixel = r.number("meters_per_pixel", 0, 1e5, p.meters_per_pixel);
     for (const char* key : {"size", "origin"}) {
-        auto it = j.find(key);
-        if (it == j.end()) continue;
+        const json* it = r.child(key);
+        if (!it) continue;
         if (!it->is_array() || it->size() != 2 || !(*it)[0].is_number_integer() || !(*it)[1].is_number_integer()) {
             r.fail(key, "must be [x, y] whole numbers");
             continue;
@@ -107,44 +64,39 @@ Result<Project> parseProject(const std::string& text, const std::string& file, c
             if (a < 1 || b < 1 || a > 16384 || b > 16384) r.fail("size", "each side must be 1..16384");
             p.width = static_cast<int>(a), p.height = static_cast<int>(b);
         } else {
-            if (std::llabs(a) > (1 << 28) || std::llabs(b) > (1 << 28)) r.fail("origin", "must be within +-2^28");
+            // Compared without negating: -INT64_MIN does not exist.
+            const int64_t limit = int64_t(1) << 28;
+            if (a < -limit || a > limit || b < -limit || b > limit) r.fail("origin", "must be within +-2^28");
             p.origin_x = a, p.origin_y = b;
         }
     }
-    if (auto s = j.find("synthesis"); s != j.end()) {
-        if (!s->is_object()) {
-            r.fail("synthesis", "must be an object");
-        } else {
-            r.knownKeys(*s, "synthesis", {"seed", "jitter", "correction_passes", "coarsest_level", "first_constrained_level",
-                                          "hold_point_heights"});
-            r.number(*s, "seed", "synthesis.seed", &p.synthesis.seed, 0, 4294967295.0);
-            r.number(*s, "jitter", "synthesis.jitter", &p.synthesis.jitter, 0, 1);
-            r.number(*s, "correction_passes", "synthesis.correction_passes", &p.synthesis.correction_passes, 0, 4);
-            r.number(*s, "coarsest_level", "synthesis.coarsest_level", &p.synthesis.coarsest_level, -1, 12);
-            r.number(*s, "first_constrained_level", "synthesis.first_constrained_level",
-                     &p.synthesis.first_constrained_level, 0, 12);
-            if (auto hold = s->find("hold_point_heights"); hold != s->end()) {
-                if (!hold->is_boolean()) r.fail("synthesis.hold_point_heights", "must be true or false");
-                else p.hold_point_heights = hold->get<bool>();
-            }
-        }
+    if (const json* synthesis = r.child("synthesis")) {
+        JsonReader s(*synthesis, "synthesis");
+        SynthesisParams& q = p.synthesis;
+        q.seed = static_cast<uint32_t>(s.integer("seed", q.seed, 0, 4294967295ll));
+        q.jitter = static_cast<float>(s.number("jitter", 0, 1, q.jitter));
+        q.correction_passes = static_cast<int>(s.integer("correction_passes", q.correction_passes, 0, 4));
+        q.coarsest_level = static_cast<int>(s.integer("coarsest_level", q.coarsest_level, -1, 12));
+        q.first_constrained_level = static_cast<int>(s.integer("first_constrained_level", q.first_constrained_level, 0, 12));
+        p.hold_point_heights = s.boolean("hold_point_heights", p.hold_point_heights);
+        r.failWith(s.finish().message());
     }
-    if (auto c = j.find("constraints"); c != j.end()) {
+    if (const json* c = r.child("constraints")) {
         if (!c->is_object()) r.fail("constraints", "must be an object");
-        else p.constraints = *c;
+        else p.constraints_json = c->dump();
     }
-    if (auto l = j.find("layers"); l != j.end()) {
+    if (const json* l = r.child("layers")) {
         if (!l->is_array()) r.fail("layers", "must be an array");
-        else p.layers = *l;
+        else p.layers_json = l->dump();
     }
-    if (!r.ok()) return r.status();
+    if (Status s = r.finish(); !s) return s.withContext(file);
     return p;
 }
 
 Result<Project> loadProject(const std::string& path) {
     auto bytes = readFileBytes(path);
     if (!bytes) return bytes.status();
-    return parseProject(bytes.value(), path, folderOf(path));
+    return parseProject(bytes.value(), path, detail::folderOf(path));
 }
 
 std::string projectToJson(const Project& p) {
@@ -162,8 +114,8 @@ std::string projectToJson(const Project& p) {
           {"coarsest_level", p.synthesis.coarsest_level},
           {"first_constrained_level", p.synthesis.first_constrained_level},
           {"hold_point_heights", p.hold_point_heights}}},
-        {"constraints", p.constraints},
-        {"layers", p.layers},
+        {"constraints", json::parse(p.constraints_json, nullptr, false)},
+        {"layers", json::parse(p.layers_json, nullptr, false)},
     };
     if (!p.exemplars.empty()) j["exemplars"] = p.exemplars;
     if (!p.database.empty()) j["database"] = p.database;

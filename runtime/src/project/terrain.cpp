@@ -12,14 +12,6 @@
 
 namespace terrasynth {
 
-namespace {
-// Relative paths inside a project are relative to its folder.
-std::string projectFolder(const Project& project) {
-    return project.path.find('/') == std::string::npos ? std::string(".")
-                                                        : project.path.substr(0, project.path.find_last_of('/'));
-}
-}  // namespace
-
 Result<std::shared_ptr<Terrain>> Terrain::open(const std::string& project_path, const TerrainOptions& options) {
     auto project = loadProject(project_path);
     if (!project) return project.status();
@@ -27,13 +19,13 @@ Result<std::shared_ptr<Terrain>> Terrain::open(const std::string& project_path, 
 }
 
 Result<std::shared_ptr<Terrain>> Terrain::fromProject(Project project, const TerrainOptions& options) {
-    if (!project.layers.empty()) {
-        auto stack = parseLayerStack(project.layers, projectFolder(project));
+    if (project.hasLayers()) {
+        auto stack = parseLayerStack(project.layers_json, project.folder());
         if (!stack) return stack.status().withContext(project.path);
     }
     auto db = openProjectDatabase(project, options.database);
     if (!db) return db.status();
-    auto constraints = parseConstraints(project.constraints, projectFolder(project), *db.value(), project.origin_x, project.origin_y,
+    auto constraints = parseConstraints(project.constraints_json, project.folder(), *db.value(), project.origin_x, project.origin_y,
                                         project.width, project.height);
     if (!constraints) return constraints.status().withContext(project.path);
     if (!constraints->empty())
@@ -67,7 +59,7 @@ Result<Synthesizer*> Terrain::synthesizerForThisThread() {
 
 bool Terrain::hasExtentEdit() const {
     const auto& c = project_.synthesis.constraints;
-    return !project_.layers.empty() || (c && (!c->freeze.empty() || !c->pastes.empty()));
+    return project_.hasLayers() || (c && (!c->freeze.empty() || !c->pastes.empty()));
 }
 
 // The extent as the user shaped it: synthesis with constraints, then (s5.3) the freeze brush and
@@ -107,8 +99,8 @@ Result<const std::vector<float>*> Terrain::extentEdit() {
     if (!synthesizer) return synthesizer.status();
     auto shaped = shapedExtent(*synthesizer.value());
     if (!shaped) return shaped.status();
-    if (!project_.layers.empty()) {
-        auto stack = parseLayerStack(project_.layers, projectFolder(project_));
+    if (project_.hasLayers()) {
+        auto stack = parseLayerStack(project_.layers_json, project_.folder());
         if (!stack) return stack.status().withContext(project_.path);
         auto layered = applyLayerStack(stack.value(), shaped.value());
         if (!layered) return layered.status().withContext(project_.path);

@@ -19,7 +19,7 @@ Status sameSettings(const Project& a, const Project& b, const ExemplarDatabase& 
         return Status::error("the projects' synthesis settings differ (seed, jitter, passes, levels, hold_point_heights)");
     auto unsupported = [](const Project& p) {
         const auto& c = p.synthesis.constraints;
-        return !p.layers.empty() || (c && !c->pastes.empty());
+        return p.hasLayers() || (c && !c->pastes.empty());
     };
     if (unsupported(a) || unsupported(b)) return Status::error("pastes and layers are not supported in a coherent edit");
     return Status::ok();

@@ -1,10 +1,11 @@
-// The "constraints" section of a .tsyn project (docs/project-format.md): point constraints and
-// type painting (as a mask PNG with a palette, or as brush strokes), in project pixels.
+// The "constraints" section of a .tsyn project (docs/project-format.md): point and curve constraints,
+// type painting and the freeze brush (as mask PNGs and/or brush strokes), pastes; in project pixels.
+// constraintsToJson is the inverse of parseConstraints: painting comes back as masks.
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
-#include "core/sidecar.h"
+#include "core/json_reader.h"
+#include "core/paths.h"
 #include "terrasynth/constraints.h"
 #include "terrasynth/database.h"
 #include "terrasynth/heightfield_io.h"
@@ -13,16 +14,7 @@ namespace terrasynth {
 namespace {
 
 using nlohmann::json;
-
-// A checked number field "<path>.<key>"; `fallback` when absent, else an error.
-Result<double> number(const json& object, const char* key, const std::string& path, double lo, double hi,
-                      std::optional<double> fallback = std::nullopt) {
-    auto v = detail::readNumberInRange(object, key, path + "." + key, lo, hi);
-    if (!v) return v.status();
-    if (v.value()) return *v.value();
-    if (fallback) return *fallback;
-    return Status::error(path + "." + key + ": missing");
-}
+using detail::JsonReader;
 
 Result<uint8_t> typeByName(const ExemplarDatabase& db, const json& name, const std::string& path) {
     if (!name.is_string()) return Status::error(path + ": must be a terrain type name");
@@ -39,43 +31,18 @@ Result<uint8_t> typeByName(const ExemplarDatabase& db, const json& name, const s
 Status parsePoints(const json& points, SynthesisConstraints& out, int64_t ox, int64_t oy) {
     if (!points.is_array()) return Status::error("constraints.points: must be an array");
     for (size_t i = 0; i < points.size(); ++i) {
-        const std::string path = "constraints.points[" + std::to_string(i) + "]";
-        const json& p = points[i];
-        if (!p.is_object()) return Status::error(path + ": must be an object");
+        JsonReader r(points[i], "constraints.points[" + std::to_string(i) + "]");
         PointConstraint c;
-        auto x = number(p, "x", path, -1e8, 1e8), y = number(p, "y", path, -1e8, 1e8);
-        auto h = number(p, "height_m", path, -12000, 12000);
-        auto dir = number(p, "slope_direction_deg", path, -360, 360, 0.0);
-        auto angle = number(p, "slope_angle_deg", path, 0, 80, 0.0);
-        auto radius = number(p, "radius_px", path, 1e-3, 1e6, 64.0);
-        for (auto* r : {&x, &y, &h, &dir, &angle, &radius})
-            if (!*r) return r->status();
-        c.x = ox + x.value();
-        c.y = oy + y.value();
-        c.height_m = static_cast<float>(h.value());
-        c.slope_direction_deg = static_cast<float>(dir.value());
-        c.slope_angle_deg = static_cast<float>(angle.value());
-        c.radius_px = static_cast<float>(radius.value());
+        c.x = ox + r.number("x", -1e8, 1e8, std::nullopt);
+        c.y = oy + r.number("y", -1e8, 1e8, std::nullopt);
+        c.height_m = static_cast<float>(r.number("height_m", -12000, 12000, std::nullopt));
+        c.slope_direction_deg = static_cast<float>(r.number("slope_direction_deg", -360, 360, 0.0));
+        c.slope_angle_deg = static_cast<float>(r.number("slope_angle_deg", 0, 80, 0.0));
+        c.radius_px = static_cast<float>(r.number("radius_px", 1e-3, 1e6, 64.0));
+        if (Status s = r.finish(); !s) return s;
         out.points.push_back(c);
     }
     return Status::ok();
-}
-
-// Paints a round brush of `radius` pixels along each segment of a stroke.
-void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius, uint8_t type) {
-    auto dab = [&](double cx, double cy) {
-        for (int y = static_cast<int>(std::floor(cy - radius)); y <= static_cast<int>(std::ceil(cy + radius)); ++y)
-            for (int x = static_cast<int>(std::floor(cx - radius)); x <= static_cast<int>(std::ceil(cx + radius)); ++x)
-                if (x >= 0 && y >= 0 && x < paint.width && y < paint.height && (x - cx) * (x - cx) + (y - cy) * (y - cy) <= radius * radius)
-                    paint.types[static_cast<size_t>(y) * paint.width + x] = type;
-    };
-    for (size_t i = 0; i < line.size(); ++i) {
-        if (i == 0) dab(line[0].first, line[0].second);
-        if (i == 0) continue;
-        const double dx = line[i].first - line[i - 1].first, dy = line[i].second - line[i - 1].second;
-        const int steps = std::max(1, static_cast<int>(std::ceil(std::hypot(dx, dy) / std::max(0.5, radius * 0.5))));
-        for (int s = 1; s <= steps; ++s) dab(line[i - 1].first + dx * s / steps, line[i - 1].second + dy * s / steps);
-    }
 }
 
 // A list of [x, y] points (at least `minimum`), offset by (ox, oy). The error names `path`.
@@ -85,62 +52,54 @@ Result<std::vector<std::pair<double, double>>> readPoints(const json& list, cons
         return Status::error(path + ": must be an array of at least " + std::to_string(minimum) + " points [x, y]");
     std::vector<std::pair<double, double>> points;
     for (const json& p : list) {
-        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number() ||
+            !std::isfinite(p[0].get<double>()) || !std::isfinite(p[1].get<double>()))
             return Status::error(path + ": each point must be [x, y]");
         points.emplace_back(ox + p[0].get<double>(), oy + p[1].get<double>());
     }
     return points;
 }
 
-// One brush stroke {"radius_px": r, "points": [[x, y], ...]} painted with `value`.
-Status paintStrokeJson(const json& stroke, const std::string& path, uint8_t value, TypePaint& paint) {
-    if (!stroke.is_object()) return Status::error(path + ": must be an object");
-    auto radius = number(stroke, "radius_px", path, 0.5, 1e5, 16.0);
-    if (!radius) return radius.status();
-    auto line = readPoints(stroke.value("points", json()), path + ".points", 1);
+// One brush stroke {"radius_px": r, "points": [[x, y], ...]} painted with `value` (project pixels).
+Status paintStrokeJson(JsonReader& r, uint8_t value, TypePaint& paint) {
+    const double radius = r.number("radius_px", 0.5, 1e5, 16.0);
+    const json* points = r.child("points");
+    if (Status s = r.finish(); !s) return s;
+    auto line = readPoints(points ? *points : json(), r.field("points"), 1, static_cast<double>(paint.x),
+                           static_cast<double>(paint.y));
     if (!line) return line.status();
-    paintStroke(paint, line.value(), radius.value(), value);
+    paintStroke(paint, line.value(), radius, value);
     return Status::ok();
-}
-
-std::string resolvePath(const std::string& base_dir, const std::string& name) {
-    return !name.empty() && name.front() == '/' ? name : base_dir + "/" + name;
 }
 
 Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, int64_t oy) {
     if (!curves.is_array()) return Status::error("constraints.curves: must be an array");
     for (size_t i = 0; i < curves.size(); ++i) {
-        const std::string path = "constraints.curves[" + std::to_string(i) + "]";
-        const json& c = curves[i];
-        if (!c.is_object()) return Status::error(path + ": must be an object");
+        JsonReader r(curves[i], "constraints.curves[" + std::to_string(i) + "]");
+        if (!r.ok()) return r.status();
         CurveConstraint curve;
-        auto course = readPoints(c.value("course", json()), path + ".course", 2, static_cast<double>(ox), static_cast<double>(oy));
-        if (!course) return course.status();
-        curve.course = std::move(course.value());
-        if (auto spline = c.find("spline"); spline != c.end()) {
-            if (!spline->is_boolean()) return Status::error(path + ".spline: must be true or false");
-            curve.spline = spline->get<bool>();
-        }
-        auto widgets = c.find("widgets");
-        if (widgets == c.end() || !widgets->is_array() || widgets->empty())
-            return Status::error(path + ".widgets: must be a non-empty array");
+        const json* course = r.child("course");
+        auto points = readPoints(course ? *course : json(), r.field("course"), 2, static_cast<double>(ox),
+                                 static_cast<double>(oy));
+        if (!points) return points.status();
+        curve.course = std::move(points.value());
+        curve.spline = r.boolean("spline", true);
+        const json* widgets = r.child("widgets");
+        if (Status s = r.finish(); !s) return s;
+        if (!widgets || !widgets->is_array() || widgets->empty())
+            return Status::error(r.field("widgets") + ": must be a non-empty array");
         for (size_t w = 0; w < widgets->size(); ++w) {
-            const std::string wp = path + ".widgets[" + std::to_string(w) + "]";
-            const json& j = (*widgets)[w];
-            if (!j.is_object()) return Status::error(wp + ": must be an object");
+            JsonReader wr((*widgets)[w], r.field("widgets[" + std::to_string(w) + "]"));
             CurveWidget widget;
-            auto t = number(j, "t", wp, 0, 1);
-            auto h = number(j, "height_m", wp, -12000, 12000);
-            auto lg = number(j, "left_gradient", wp, -20, 20, 0.0), rg = number(j, "right_gradient", wp, -20, 20, 0.0);
-            auto lr = number(j, "left_reach_px", wp, 1e-3, 1e5, 32.0), rr = number(j, "right_reach_px", wp, 1e-3, 1e5, 32.0);
-            for (auto* r : {&t, &h, &lg, &rg, &lr, &rr})
-                if (!*r) return r->status();
-            widget.t = t.value();
-            widget.height_m = static_cast<float>(h.value());
-            widget.left_gradient = static_cast<float>(lg.value()), widget.right_gradient = static_cast<float>(rg.value());
-            widget.left_reach_px = static_cast<float>(lr.value()), widget.right_reach_px = static_cast<float>(rr.value());
+            widget.t = wr.number("t", 0, 1, std::nullopt);
+            widget.height_m = static_cast<float>(wr.number("height_m", -12000, 12000, std::nullopt));
+            widget.left_gradient = static_cast<float>(wr.number("left_gradient", -20, 20, 0.0));
+            widget.right_gradient = static_cast<float>(wr.number("right_gradient", -20, 20, 0.0));
+            widget.left_reach_px = static_cast<float>(wr.number("left_reach_px", 1e-3, 1e5, 32.0));
+            widget.right_reach_px = static_cast<float>(wr.number("right_reach_px", 1e-3, 1e5, 32.0));
+            if (Status s = wr.finish(); !s) return s;
             if (!curve.widgets.empty() && widget.t < curve.widgets.back().t)
-                return Status::error(wp + ".t: widgets must be sorted by t");
+                return Status::error(wr.field("t") + ": widgets must be sorted by t");
             curve.widgets.push_back(widget);
         }
         out.curves.push_back(std::move(curve));
@@ -148,45 +107,56 @@ Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, in
     return Status::ok();
 }
 
+// An 8-bit gray mask PNG of the project's size, `field` naming it in errors.
+Result<Image8> readExtentMask(const json& name, const std::string& field, const std::string& base_dir, int w, int h) {
+    if (!name.is_string()) return Status::error(field + ": must be a PNG path");
+    const std::string path = detail::resolveRelative(base_dir, name.get<std::string>());
+    auto image = readPng8(path);
+    if (!image) return image.status().withContext(field);
+    if (image->width != w || image->height != h || image->channels != 1)
+        return Status::error(field + ": " + path + " must be 8-bit gray of the project size " + std::to_string(w) +
+                             "x" + std::to_string(h));
+    return image;
+}
 
 Status parseTypes(const json& types, const std::string& base_dir, const ExemplarDatabase& db, SynthesisConstraints& out,
                   int64_t ox, int64_t oy, int w, int h) {
-    if (!types.is_object()) return Status::error("constraints.types: must be an object");
+    JsonReader r(types, "constraints.types");
+    if (!r.ok()) return r.status();
     TypePaint& paint = out.types;
     paint.x = ox, paint.y = oy, paint.width = w, paint.height = h;
     paint.types.assign(static_cast<size_t>(w) * h, TypePaint::kUnpainted);
-    if (auto mask = types.find("mask"); mask != types.end()) {
-        if (!mask->is_string()) return Status::error("constraints.types.mask: must be a PNG path");
-        const std::string path = resolvePath(base_dir, mask->get<std::string>());
-        auto image = readPng8(path);
-        if (!image) return image.status().withContext("constraints.types.mask");
-        if (image->width != w || image->height != h || image->channels != 1)
-            return Status::error("constraints.types.mask: " + path + " must be 8-bit gray of the project size " +
-                                 std::to_string(w) + "x" + std::to_string(h));
-        auto palette = types.find("palette");
-        if (palette == types.end() || !palette->is_object())
+    const json* mask = r.child("mask");
+    const json* palette = r.child("palette");
+    const json* strokes = r.child("strokes");
+    if (Status s = r.finish(); !s) return s;
+    if (mask) {
+        auto image = readExtentMask(*mask, "constraints.types.mask", base_dir, w, h);
+        if (!image) return image.status();
+        if (!palette || !palette->is_object())
             return Status::error("constraints.types.palette: must map mask values to type names");
         uint8_t lookup[256];
         std::fill(std::begin(lookup), std::end(lookup), TypePaint::kUnpainted);
         for (auto it = palette->begin(); it != palette->end(); ++it) {
-            int value = -1;
-            try { value = std::stoi(it.key()); } catch (...) {}
+            const std::string& key = it.key();
+            const bool digits = !key.empty() && key.size() <= 3 && std::all_of(key.begin(), key.end(), ::isdigit);
+            const int value = digits ? std::stoi(key) : -1;
             if (value < 1 || value > 255) return Status::error("constraints.types.palette: keys must be mask values 1..255");
-            auto t = typeByName(db, it.value(), "constraints.types.palette." + it.key());
+            auto t = typeByName(db, it.value(), "constraints.types.palette." + key);
             if (!t) return t.status();
             lookup[value] = t.value();
         }
         for (size_t i = 0; i < paint.types.size(); ++i) paint.types[i] = lookup[image->samples[i]];
     }
-    if (auto strokes = types.find("strokes"); strokes != types.end()) {
+    if (strokes) {
         if (!strokes->is_array()) return Status::error("constraints.types.strokes: must be an array");
         for (size_t i = 0; i < strokes->size(); ++i) {
-            const std::string path = "constraints.types.strokes[" + std::to_string(i) + "]";
-            const json& stroke = (*strokes)[i];
-            auto type = typeByName(db, stroke.is_object() ? stroke.value("type", json()) : json(), path + ".type");
+            JsonReader sr((*strokes)[i], "constraints.types.strokes[" + std::to_string(i) + "]");
+            if (!sr.ok()) return sr.status();
+            auto type = typeByName(db, (*strokes)[i].value("type", json()), sr.field("type"));
             if (!type) return type.status();
-            Status painted = paintStrokeJson(stroke, path, type.value(), paint);
-            if (!painted) return painted;
+            sr.use("type");
+            if (Status painted = paintStrokeJson(sr, type.value(), paint); !painted) return painted;
         }
     }
     if (db.type_names.size() > static_cast<size_t>(kMaxPaintableTypes))
@@ -197,24 +167,25 @@ Status parseTypes(const json& types, const std::string& base_dir, const Exemplar
 // The freeze brush: an 8-bit mask PNG of the project's size (non-zero = frozen) and/or strokes.
 Status parseFreeze(const json& freeze, const std::string& base_dir, SynthesisConstraints& out, int64_t ox, int64_t oy,
                    int w, int h) {
-    if (!freeze.is_object()) return Status::error("constraints.freeze: must be an object");
+    JsonReader r(freeze, "constraints.freeze");
+    if (!r.ok()) return r.status();
     TypePaint& mask = out.freeze;
     mask.x = ox, mask.y = oy, mask.width = w, mask.height = h;
     mask.types.assign(static_cast<size_t>(w) * h, 0);
-    if (auto m = freeze.find("mask"); m != freeze.end()) {
-        if (!m->is_string()) return Status::error("constraints.freeze.mask: must be a PNG path");
-        const std::string path = resolvePath(base_dir, m->get<std::string>());
-        auto image = readPng8(path);
-        if (!image) return image.status().withContext("constraints.freeze.mask");
-        if (image->width != w || image->height != h || image->channels != 1)
-            return Status::error("constraints.freeze.mask: " + path + " must be 8-bit gray of the project size");
+    const json* image_name = r.child("mask");
+    const json* strokes = r.child("strokes");
+    if (Status s = r.finish(); !s) return s;
+    if (image_name) {
+        auto image = readExtentMask(*image_name, "constraints.freeze.mask", base_dir, w, h);
+        if (!image) return image.status();
         for (size_t i = 0; i < mask.types.size(); ++i) mask.types[i] = image->samples[i] ? 1 : 0;
     }
-    if (auto strokes = freeze.find("strokes"); strokes != freeze.end()) {
+    if (strokes) {
         if (!strokes->is_array()) return Status::error("constraints.freeze.strokes: must be an array");
         for (size_t i = 0; i < strokes->size(); ++i) {
-            Status painted = paintStrokeJson((*strokes)[i], "constraints.freeze.strokes[" + std::to_string(i) + "]", 1, mask);
-            if (!painted) return painted;
+            JsonReader sr((*strokes)[i], "constraints.freeze.strokes[" + std::to_string(i) + "]");
+            if (!sr.ok()) return sr.status();
+            if (Status painted = paintStrokeJson(sr, 1, mask); !painted) return painted;
         }
     }
     return Status::ok();
@@ -223,66 +194,163 @@ Status parseFreeze(const json& freeze, const std::string& base_dir, SynthesisCon
 Status parsePastes(const json& pastes, const ExemplarDatabase& db, SynthesisConstraints& out, int64_t ox, int64_t oy) {
     if (!pastes.is_array()) return Status::error("constraints.pastes: must be an array");
     for (size_t i = 0; i < pastes.size(); ++i) {
-        const std::string path = "constraints.pastes[" + std::to_string(i) + "]";
-        const json& p = pastes[i];
-        if (!p.is_object()) return Status::error(path + ": must be an object");
+        JsonReader r(pastes[i], "constraints.pastes[" + std::to_string(i) + "]");
+        if (!r.ok()) return r.status();
         PasteConstraint paste;
-        if (auto e = p.find("exemplar"); e != p.end()) {
-            if (!e->is_string()) return Status::error(path + ".exemplar: must be an exemplar name");
+        if (r.has("exemplar")) {
+            const std::string name = r.string("exemplar", "");
             for (size_t k = 0; k < db.exemplars.size(); ++k)
-                if (db.exemplars[k].name == e->get<std::string>()) paste.exemplar = static_cast<int>(k);
-            if (paste.exemplar < 0) return Status::error(path + ".exemplar: no exemplar named \"" + e->get<std::string>() + "\"");
+                if (db.exemplars[k].name == name) paste.exemplar = static_cast<int>(k);
+            if (r.ok() && paste.exemplar < 0) r.fail("exemplar", "no exemplar named \"" + name + "\"");
         }
         // Exemplar sources are in exemplar pixels; terrain sources in project pixels.
         const bool from_terrain = paste.exemplar < 0;
-        auto source = readPoints(p.value("source", json()), path + ".source", 3, from_terrain ? ox : 0, from_terrain ? oy : 0);
-        if (!source) return source.status();
-        paste.source = std::move(source.value());
-        auto target = p.find("target");
-        if (target == p.end() || !target->is_array() || target->size() != 2 || !(*target)[0].is_number() ||
-            !(*target)[1].is_number())
-            return Status::error(path + ".target: must be [x, y], where the source's first point lands");
-        paste.dx = ox + (*target)[0].get<double>() - paste.source[0].first;
-        paste.dy = oy + (*target)[1].get<double>() - paste.source[0].second;
-        auto offset = number(p, "height_offset_m", path, -12000, 12000, 0.0);
-        if (!offset) return offset.status();
-        paste.height_offset_m = static_cast<float>(offset.value());
+        const json* source = r.child("source");
+        const std::vector<double> target = r.numbers("target", 2, 2);
+        paste.height_offset_m = static_cast<float>(r.number("height_offset_m", -12000, 12000, 0.0));
+        if (Status s = r.finish(); !s) return s;
+        auto points = readPoints(source ? *source : json(), r.field("source"), 3, from_terrain ? static_cast<double>(ox) : 0.0,
+                                 from_terrain ? static_cast<double>(oy) : 0.0);
+        if (!points) return points.status();
+        paste.source = std::move(points.value());
+        paste.dx = ox + target[0] - paste.source[0].first;
+        paste.dy = oy + target[1] - paste.source[0].second;
         out.pastes.push_back(std::move(paste));
     }
     return Status::ok();
 }
 
+// ---- The inverse ----
+
+json pointsJson(const std::vector<std::pair<double, double>>& points, double ox, double oy) {
+    json list = json::array();
+    for (const auto& [x, y] : points) list.push_back({x - ox, y - oy});
+    return list;
+}
+
+// `paint` resampled onto the extent (nearest; pixels outside it read `outside`).
+std::vector<uint8_t> onExtent(const TypePaint& paint, int64_t ox, int64_t oy, int w, int h, uint8_t outside) {
+    std::vector<uint8_t> out(static_cast<size_t>(w) * h, outside);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const int64_t px = ox + x - paint.x, py = oy + y - paint.y;
+            if (px >= 0 && py >= 0 && px < paint.width && py < paint.height)
+                out[static_cast<size_t>(y) * w + x] = paint.types[static_cast<size_t>(py) * paint.width + px];
+        }
+    return out;
+}
+
 }  // namespace
 
-Result<SynthesisConstraints> parseConstraints(const json& c, const std::string& base_dir, const ExemplarDatabase& db,
+void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius_px, uint8_t value) {
+    const double r = radius_px;
+    auto dab = [&](double gx, double gy) {
+        const double cx = gx - static_cast<double>(paint.x), cy = gy - static_cast<double>(paint.y);
+        const int y0 = static_cast<int>(std::max(0.0, std::floor(cy - r)));
+        const int y1 = static_cast<int>(std::min(paint.height - 1.0, std::ceil(cy + r)));
+        const int x0 = static_cast<int>(std::max(0.0, std::floor(cx - r)));
+        const int x1 = static_cast<int>(std::min(paint.width - 1.0, std::ceil(cx + r)));
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x)
+                if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r)
+                    paint.types[static_cast<size_t>(y) * paint.width + x] = value;
+    };
+    for (size_t i = 0; i < line.size(); ++i) {
+        if (i == 0) {
+            dab(line[0].first, line[0].second);
+            continue;
+        }
+        const double dx = line[i].first - line[i - 1].first, dy = line[i].second - line[i - 1].second;
+        const int steps = std::max(1, static_cast<int>(std::ceil(std::hypot(dx, dy) / std::max(0.5, r * 0.5))));
+        for (int s = 1; s <= steps; ++s) dab(line[i - 1].first + dx * s / steps, line[i - 1].second + dy * s / steps);
+    }
+}
+
+Result<SynthesisConstraints> parseConstraints(const std::string& text, const std::string& base_dir, const ExemplarDatabase& db,
                                               int64_t ox, int64_t oy, int w, int h) {
     SynthesisConstraints out;
+    const json c = json::parse(text, nullptr, /*allow_exceptions=*/false);
+    if (c.is_discarded()) return Status::error("constraints: malformed JSON");
     if (c.is_null()) return out;
     if (!c.is_object()) return Status::error("constraints: must be an object");
     for (auto it = c.begin(); it != c.end(); ++it)
         if (it.key() != "points" && it.key() != "types" && it.key() != "curves" && it.key() != "freeze" &&
             it.key() != "pastes")
             return Status::error("constraints." + it.key() + ": not supported (points, curves, types, freeze, pastes are)");
-    if (auto p = c.find("points"); p != c.end()) {
-        Status s = parsePoints(*p, out, ox, oy);
-        if (!s) return s;
+    if (auto p = c.find("points"); p != c.end())
+        if (Status s = parsePoints(*p, out, ox, oy); !s) return s;
+    if (auto curves = c.find("curves"); curves != c.end())
+        if (Status s = parseCurves(*curves, out, ox, oy); !s) return s;
+    if (auto t = c.find("types"); t != c.end())
+        if (Status s = parseTypes(*t, base_dir, db, out, ox, oy, w, h); !s) return s;
+    if (auto f = c.find("freeze"); f != c.end())
+        if (Status s = parseFreeze(*f, base_dir, out, ox, oy, w, h); !s) return s;
+    if (auto p = c.find("pastes"); p != c.end())
+        if (Status s = parsePastes(*p, db, out, ox, oy); !s) return s;
+    return out;
+}
+
+Result<ConstraintsJson> constraintsToJson(const SynthesisConstraints& c, const ExemplarDatabase& db, int64_t ox,
+                                          int64_t oy, int w, int h, const std::string& mask_stem) {
+    json j = json::object();
+    const double x0 = static_cast<double>(ox), y0 = static_cast<double>(oy);
+    ConstraintsJson out;
+    if (!c.points.empty()) {
+        json& points = j["points"] = json::array();
+        for (const PointConstraint& p : c.points)
+            points.push_back({{"x", p.x - x0}, {"y", p.y - y0}, {"height_m", p.height_m},
+                              {"slope_direction_deg", p.slope_direction_deg}, {"slope_angle_deg", p.slope_angle_deg},
+                              {"radius_px", p.radius_px}});
     }
-    if (auto curves = c.find("curves"); curves != c.end()) {
-        Status s = parseCurves(*curves, out, ox, oy);
-        if (!s) return s;
+    if (!c.curves.empty()) {
+        json& curves = j["curves"] = json::array();
+        for (const CurveConstraint& curve : c.curves) {
+            json widgets = json::array();
+            for (const CurveWidget& wd : curve.widgets)
+                widgets.push_back({{"t", wd.t}, {"height_m", wd.height_m}, {"left_gradient", wd.left_gradient},
+                                   {"right_gradient", wd.right_gradient}, {"left_reach_px", wd.left_reach_px},
+                                   {"right_reach_px", wd.right_reach_px}});
+            curves.push_back({{"course", pointsJson(curve.course, x0, y0)}, {"spline", curve.spline}, {"widgets", widgets}});
+        }
     }
-    if (auto t = c.find("types"); t != c.end()) {
-        Status s = parseTypes(*t, base_dir, db, out, ox, oy, w, h);
-        if (!s) return s;
+    if (!c.types.empty()) {
+        // Mask value = type id + 1 (0 = unpainted), named through the palette.
+        std::vector<uint8_t> pixels = onExtent(c.types, ox, oy, w, h, TypePaint::kUnpainted);
+        json palette = json::object();
+        for (uint8_t& v : pixels) {
+            if (v == TypePaint::kUnpainted) {
+                v = 0;
+                continue;
+            }
+            if (v >= db.type_names.size())
+                return Status::error("constraints.types: type id " + std::to_string(v) + " is not in the database");
+            palette[std::to_string(v + 1)] = db.type_names[v];
+            v = static_cast<uint8_t>(v + 1);
+        }
+        out.masks.push_back({mask_stem + ".types.png", w, h, std::move(pixels)});
+        j["types"] = {{"mask", detail::baseName(out.masks.back().file)}, {"palette", palette}};
     }
-    if (auto f = c.find("freeze"); f != c.end()) {
-        Status s = parseFreeze(*f, base_dir, out, ox, oy, w, h);
-        if (!s) return s;
+    if (!c.freeze.empty()) {
+        std::vector<uint8_t> pixels = onExtent(c.freeze, ox, oy, w, h, 0);
+        for (uint8_t& v : pixels) v = v != 0 && v != TypePaint::kUnpainted ? 255 : 0;
+        out.masks.push_back({mask_stem + ".freeze.png", w, h, std::move(pixels)});
+        j["freeze"] = {{"mask", detail::baseName(out.masks.back().file)}};
     }
-    if (auto p = c.find("pastes"); p != c.end()) {
-        Status s = parsePastes(*p, db, out, ox, oy);
-        if (!s) return s;
+    if (!c.pastes.empty()) {
+        json& pastes = j["pastes"] = json::array();
+        for (const PasteConstraint& p : c.pastes) {
+            if (p.source.empty()) return Status::error("constraints.pastes: a paste without a source polygon");
+            const bool from_terrain = p.exemplar < 0;
+            if (!from_terrain && p.exemplar >= static_cast<int>(db.exemplars.size()))
+                return Status::error("constraints.pastes: exemplar " + std::to_string(p.exemplar) + " is not in the database");
+            json paste = {{"source", from_terrain ? pointsJson(p.source, x0, y0) : pointsJson(p.source, 0.0, 0.0)},
+                          {"target", {p.source[0].first + p.dx - x0, p.source[0].second + p.dy - y0}},
+                          {"height_offset_m", p.height_offset_m}};
+            if (!from_terrain) paste["exemplar"] = db.exemplars[p.exemplar].name;
+            pastes.push_back(std::move(paste));
+        }
     }
+    out.json = j.dump();
     return out;
 }
 

@@ -1,0 +1,142 @@
+#include "core/json_reader.h"
+
+#include <cmath>
+
+namespace terrasynth::detail {
+
+using nlohmann::json;
+
+std::string compactNumber(double v) {
+    std::string s = std::to_string(v);
+    while (s.find('.') != std::string::npos && (s.back() == '0' || s.back() == '.')) {
+        const bool dot = s.back() == '.';
+        s.pop_back();
+        if (dot) break;
+    }
+    return s;
+}
+
+JsonReader::JsonReader(const json& object, std::string where) : object_(object), where_(std::move(where)) {
+    if (!object_.is_object()) fail("", "must be an object");
+}
+
+const json* JsonReader::find(const char* key) const {
+    if (!object_.is_object()) return nullptr;
+    auto it = object_.find(key);
+    return it == object_.end() ? nullptr : &*it;
+}
+
+bool JsonReader::has(const char* key) const { return find(key) != nullptr; }
+
+std::string JsonReader::field(const std::string& key) const {
+    if (where_.empty()) return key;
+    return key.empty() ? where_ : where_ + "." + key;
+}
+
+void JsonReader::fail(const std::string& key, const std::string& problem) {
+    if (error_.empty()) error_ = field(key) + ": " + problem;
+}
+
+void JsonReader::failWith(const std::string& message) {
+    if (error_.empty()) error_ = message;
+}
+
+double JsonReader::number(const char* key, double lo, double hi, std::optional<double> fallback) {
+    use(key);
+    const json* v = find(key);
+    if (!v) {
+        if (!fallback) fail(key, "is required");
+        return fallback.value_or(0.0);
+    }
+    if (!v->is_number()) return fail(key, "must be a number"), fallback.value_or(0.0);
+    const double d = v->get<double>();
+    if (!std::isfinite(d) || d < lo || d > hi) {
+        fail(key, "must be in [" + compactNumber(lo) + ", " + compactNumber(hi) + "], got " + compactNumber(d));
+        return fallback.value_or(0.0);
+    }
+    return d;
+}
+
+double JsonReader::numberIf(const char* key, double fallback, const std::function<bool(double)>& ok, const char* rule) {
+    use(key);
+    const json* v = find(key);
+    if (!v) return fallback;
+    if (!v->is_number()) return fail(key, "must be a number"), fallback;
+    const double d = v->get<double>();
+    if (!std::isfinite(d) || (ok && !ok(d))) return fail(key, rule), fallback;
+    return d;
+}
+
+int64_t JsonReader::integer(const char* key, int64_t fallback, int64_t lo, int64_t hi) {
+    use(key);
+    const json* v = find(key);
+    if (!v) return fallback;
+    if (!v->is_number()) return fail(key, "must be a number"), fallback;
+    // Compare as doubles first: 2^32 + 648 must be refused, not wrapped into range.
+    const double d = v->get<double>();
+    if (!std::isfinite(d) || d != std::floor(d)) return fail(key, "must be a whole number"), fallback;
+    if (d < static_cast<double>(lo) || d > static_cast<double>(hi))
+        return fail(key, "must be in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + compactNumber(d)),
+               fallback;
+    return v->is_number_unsigned() ? static_cast<int64_t>(v->get<uint64_t>())
+                                   : (v->is_number_integer() ? v->get<int64_t>() : static_cast<int64_t>(d));
+}
+
+uint64_t JsonReader::unsignedInteger(const char* key, uint64_t fallback) {
+    use(key);
+    const json* v = find(key);
+    if (!v) return fallback;
+    if (v->is_number_unsigned()) return v->get<uint64_t>();
+    if (v->is_number_integer() && v->get<int64_t>() >= 0) return static_cast<uint64_t>(v->get<int64_t>());
+    return fail(key, "must be a non-negative integer"), fallback;
+}
+
+bool JsonReader::boolean(const char* key, bool fallback) {
+    use(key);
+    const json* v = find(key);
+    if (!v) return fallback;
+    if (!v->is_boolean()) return fail(key, "must be true or false"), fallback;
+    return v->get<bool>();
+}
+
+std::string JsonReader::string(const char* key, const std::string& fallback) {
+    use(key);
+    const json* v = find(key);
+    if (!v) return fallback;
+    if (!v->is_string()) return fail(key, "must be a string"), fallback;
+    return v->get<std::string>();
+}
+
+const json* JsonReader::child(const char* key) {
+    use(key);
+    return find(key);
+}
+
+std::vector<double> JsonReader::numbers(const char* key, size_t min_n, size_t max_n) {
+    use(key);
+    std::vector<double> out;
+    const json* v = find(key);
+    if (!v) return fail(key, "is required"), out;
+    if (!v->is_array() || v->size() < min_n || v->size() > max_n)
+        return fail(key, "must be an array of " + std::to_string(min_n) +
+                             (min_n == max_n ? "" : ".." + std::to_string(max_n)) + " numbers"),
+               out;
+    for (const json& e : *v) {
+        if (!e.is_number() || !std::isfinite(e.get<double>())) return fail(key, "must contain only numbers"), out;
+        out.push_back(e.get<double>());
+    }
+    return out;
+}
+
+void JsonReader::require(const char* key) {
+    if (!has(key)) fail(key, "is required");
+}
+
+Status JsonReader::finish(bool reject_unknown) {
+    if (reject_unknown && error_.empty() && object_.is_object())
+        for (auto it = object_.begin(); it != object_.end(); ++it)
+            if (!used_.count(it.key())) fail(it.key(), "unknown field");
+    return status();
+}
+
+}  // namespace terrasynth::detail
