@@ -1,0 +1,48 @@
+// terrasynth/file_transaction.h: several files replaced together, or not at all.
+//
+// A heightmap and its JSON sidecar, a project with its masks and its heights: readers must never see
+// a new file beside an old partner (a PNG decoded with another file's height range). Every file is
+// first written whole to a temporary in its own folder (fsync'ed); nothing visible changes until
+// commit(), which renames them into place in the order they were staged (stage the file that
+// describes the others, e.g. the sidecar, last). If a rename fails, the files already replaced get
+// their previous content back (or disappear if they did not exist), so the set stays as it was.
+// A crash during commit() can leave the set mixed but never a partial file under a final name.
+//
+// Threading: one transaction per thread; not copyable. The destructor removes temporaries that were
+// not committed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "terrasynth/status.h"
+
+namespace terrasynth {
+
+class FileTransaction {
+public:
+    FileTransaction() = default;
+    ~FileTransaction();
+    FileTransaction(const FileTransaction&) = delete;
+    FileTransaction& operator=(const FileTransaction&) = delete;
+
+    // Writes `bytes` to a temporary beside `path` (same folder, so the rename is atomic). Errors name
+    // `path` (folder missing or unwritable, disk full); the transaction then refuses to commit.
+    Status stage(const std::string& path, const std::string& bytes);
+    // Renames every staged file into place, in staging order. On error the previous files are back
+    // and the message names the file that could not be replaced. Call once.
+    Status commit();
+    // Paths staged so far, in order.
+    std::vector<std::string> paths() const;
+
+private:
+    struct Staged {
+        std::string path, temp;
+    };
+    void discard();
+    std::vector<Staged> staged_;
+    Status failed_ = Status::ok();
+    bool done_ = false;
+};
+
+}  // namespace terrasynth
