@@ -7,6 +7,10 @@
 // beyond the band Frozen, so the result equals a full re-synthesis with those weights, and pixels
 // beyond the band keep their heights bit for bit.
 //
+// Undo: the heights, the history and the frozen mask are edited in place; between beginJournal()
+// and takeJournal() every change is recorded by tile (what an edit touched, once), and
+// swapJournal() puts the recorded state back (and keeps the replaced one, so the same call redoes).
+//
 // Not thread-safe (one editor thread). Uses the caller's Synthesizer, which must outlive it.
 #pragma once
 
@@ -17,10 +21,21 @@
 
 namespace terrasynth {
 
+namespace detail {
+class TileJournal;
+}
+
+// The level-0 pixels of `extent` (row-major, 1 = inside) that a paste's target polygon covers:
+// the pixels a paste freezes.
+std::vector<uint8_t> pasteTargetMask(const PasteConstraint& paste, const PixelWindow& extent);
+
 class IncrementalTerrain {
 public:
     // Synthesizes the whole extent once, recording its history.
     static Result<IncrementalTerrain> create(Synthesizer& synthesizer, const PixelWindow& extent, SynthesisParams params);
+    IncrementalTerrain(IncrementalTerrain&&) noexcept;
+    IncrementalTerrain& operator=(IncrementalTerrain&&) noexcept;
+    ~IncrementalTerrain();
 
     const Heightfield& heights() const { return heights_; }
     const SynthesisParams& params() const { return params_; }
@@ -53,8 +68,52 @@ public:
     // Freeze brush: marks level-0 pixels (global grid, mask value != 0 and != TypePaint::kUnpainted)
     // frozen for every later update and paste.
     void freeze(const TypePaint& mask);
-    // Level-0 pixels frozen so far by pastes (and kept frozen by later updates).
+    // Replaces the frozen mask (per extent pixel, != 0 = frozen) without re-synthesizing: unfreezing
+    // changes no height until a later edit reaches the pixels.
+    void setFrozen(std::vector<uint8_t> mask);
+    // Undoes the copy-paste `paste` in the terrain: the history under its target polygon is
+    // forgotten at every level, the frozen mask becomes `frozen_after` (the freeze brush and the
+    // other pastes), and the polygon's box plus a band of kCoherentBand pixels is re-synthesized
+    // Free, so new terrain fills it coherently with its surroundings.
+    Status removePaste(const Paste& paste, std::vector<uint8_t> frozen_after);
+    // Level-0 pixels frozen so far by pastes and the freeze brush (per extent pixel, 1 = frozen).
     const std::vector<uint8_t>& frozenMask() const { return frozen_; }
+    // The extent's synthesis history (every level and pass), for saving a session.
+    const SynthesisHistory& history() const { return *history_; }
+    const PixelWindow& extent() const { return extent_; }
+
+    // A terrain restored from saved state: heights, frozen mask and history as history() and
+    // frozenMask() gave them for the same extent and params (whose constraints must be those that
+    // produced them, lifts included). Errors: sizes that do not fit the extent and params.
+    static Result<IncrementalTerrain> restore(Synthesizer& synthesizer, const PixelWindow& extent, SynthesisParams params,
+                                              Heightfield heights, std::vector<uint8_t> frozen,
+                                              SynthesisHistory history);
+
+    // Undo journal (see the top of this header).
+    class Journal {
+    public:
+        Journal();
+        Journal(Journal&&) noexcept;
+        Journal& operator=(Journal&&) noexcept;
+        ~Journal();
+        bool empty() const;
+        size_t bytes() const;  // memory it holds
+
+    private:
+        friend class IncrementalTerrain;
+        std::unique_ptr<detail::TileJournal> tiles_;
+    };
+    // Starts recording (a journal already being recorded continues).
+    void beginJournal();
+    // Stops recording and returns what was recorded since beginJournal().
+    Journal takeJournal();
+    // Exchanges the recorded tiles with the current state: undo, and applied again, redo. The
+    // constraints are not part of the journal: give them back with restoreConstraints().
+    void swapJournal(Journal& journal);
+    // Sets the constraints that produced the current state (after swapJournal), lifts included.
+    void restoreConstraints(std::shared_ptr<const SynthesisConstraints> constraints) {
+        params_.constraints = std::move(constraints);
+    }
 
     // Whether update() lifts point constraints (default true); false = the paper's plain targets.
     void holdPointHeights(bool hold) { hold_point_heights_ = hold; }
@@ -63,8 +122,7 @@ public:
     PixelWindow lastWindow() const { return last_window_; }
 
 private:
-    IncrementalTerrain(Synthesizer& s, PixelWindow extent, SynthesisParams params)
-        : synthesizer_(&s), extent_(extent), params_(std::move(params)) {}
+    IncrementalTerrain(Synthesizer& s, PixelWindow extent, SynthesisParams params);
     Synthesizer* synthesizer_;
     PixelWindow extent_;
     SynthesisParams params_;
@@ -73,6 +131,10 @@ private:
     PixelWindow last_window_;
     std::vector<uint8_t> frozen_;  // per extent pixel, 1 = frozen (pasted)
     bool hold_point_heights_ = true;
+    std::unique_ptr<detail::TileJournal> journal_;  // recording when set
+    // Journal planes: 0 heights, 1 frozen, then 2 + 2 * (level * passes + pass) + {0 index, 1 v}.
+    void record(int plane, int64_t x, int64_t y, int64_t w, int64_t h);
+    void recordHistory(int level, int64_t gx, int64_t gy, int64_t w, int64_t h);  // every pass, global coords
     Status resynthesize(const PixelWindow& free_area, const std::vector<uint8_t>* free_mask,
                         std::shared_ptr<const SynthesisConstraints> constraints, bool lift_points);
 };

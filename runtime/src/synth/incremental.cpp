@@ -7,28 +7,25 @@
 #include <climits>
 #include <cmath>
 
+#include "core/tile_journal.h"
+#include "synth/coherence_fields.h"
 #include "synth/curve_geometry.h"
+#include "synth/synthesis_driver.h"
 #include "synth/synthesis_plan.h"
 
 namespace terrasynth {
 namespace {
 
-PixelWindow intersect(const PixelWindow& a, const PixelWindow& b) {
-    const int64_t x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
-    const int64_t x1 = std::min(a.x + a.width, b.x + b.width), y1 = std::min(a.y + a.height, b.y + b.height);
-    if (x1 <= x0 || y1 <= y0) return {x0, y0, 0, 0};
-    return {x0, y0, static_cast<int>(x1 - x0), static_cast<int>(y1 - y0)};
-}
-
-PixelWindow grow(const PixelWindow& w, int by) { return {w.x - by, w.y - by, w.width + 2 * by, w.height + 2 * by}; }
-
 // Copies the window's history into the extent's, level by level, pass by pass, by global position.
-// Only the window's valid part at each level (its region minus the margin) is trusted.
-void mergeHistory(SynthesisHistory& into, const SynthesisHistory& update, int margin) {
+// Only the window's valid part at each level (its region minus the margin) is trusted. `touching`
+// is told each level's rectangle (global pixels of that level) before it is written.
+template <class Touch>
+void mergeHistory(SynthesisHistory& into, const SynthesisHistory& update, int margin, Touch&& touching) {
     for (size_t level = 0; level < update.levels.size() && level < into.levels.size(); ++level) {
         const auto& from = update.levels[level];
         auto& to = into.levels[level];
         if (from.width == 0 || to.width == 0) continue;
+        touching(static_cast<int>(level), from.x + margin, from.y + margin, from.width - 2 * margin, from.height - 2 * margin);
         for (size_t pass = 0; pass < from.passes.size() && pass < to.passes.size(); ++pass) {
             for (int y = margin; y < from.height - margin; ++y) {
                 const int ty = from.y + y - to.y;
@@ -47,16 +44,54 @@ void mergeHistory(SynthesisHistory& into, const SynthesisHistory& update, int ma
 
 }  // namespace
 
+IncrementalTerrain::IncrementalTerrain(Synthesizer& s, PixelWindow extent, SynthesisParams params)
+    : synthesizer_(&s), extent_(extent), params_(std::move(params)) {
+    params_.record_history = true;
+    params_.previous.reset();
+    params_.coherence.reset();
+    frozen_.assign(static_cast<size_t>(extent_.width) * extent_.height, 0);
+}
+IncrementalTerrain::IncrementalTerrain(IncrementalTerrain&&) noexcept = default;
+IncrementalTerrain& IncrementalTerrain::operator=(IncrementalTerrain&&) noexcept = default;
+IncrementalTerrain::~IncrementalTerrain() = default;
+
 Result<IncrementalTerrain> IncrementalTerrain::create(Synthesizer& synthesizer, const PixelWindow& extent,
                                                       SynthesisParams params) {
     IncrementalTerrain terrain(synthesizer, extent, std::move(params));
-    terrain.params_.record_history = true;
-    terrain.params_.previous.reset();
-    terrain.params_.coherence.reset();
     auto out = synthesizer.synthesize(extent, terrain.params_, 0, false);
     if (!out) return out.status();
     terrain.heights_ = std::move(out->heights);
     terrain.history_ = std::move(out->history);
+    terrain.last_window_ = extent;
+    return terrain;
+}
+
+Result<IncrementalTerrain> IncrementalTerrain::restore(Synthesizer& synthesizer, const PixelWindow& extent,
+                                                       SynthesisParams params, Heightfield heights,
+                                                       std::vector<uint8_t> frozen, SynthesisHistory history) {
+    IncrementalTerrain terrain(synthesizer, extent, std::move(params));
+    const size_t pixels = static_cast<size_t>(extent.width) * extent.height;
+    if (heights.width != extent.width || heights.height != extent.height || heights.heights.size() != pixels)
+        return Status::error("restored heights do not cover the extent");
+    if (frozen.size() != pixels) return Status::error("restored frozen mask does not cover the extent");
+    // The history must be the one a synthesis of the extent records: same regions, same passes.
+    const synth::SynthesisPlan plan = synth::planSynthesis(extent, 0, synth::coarsestLevel(synthesizer.database(), terrain.params_),
+                                                           terrain.params_.correction_passes);
+    if (history.levels.size() != plan.regions.size())
+        return Status::error("restored history has " + std::to_string(history.levels.size()) + " levels, the synthesis " +
+                             std::to_string(plan.regions.size()));
+    for (size_t level = 0; level < plan.regions.size(); ++level) {
+        const auto& want = plan.regions[level];
+        const auto& got = history.levels[level];
+        const size_t n = static_cast<size_t>(got.width) * got.height;
+        bool fits = got.x == want.x && got.y == want.y && got.width == want.width && got.height == want.height &&
+                    got.passes.size() == static_cast<size_t>(terrain.params_.correction_passes);
+        for (const auto& pass : got.passes) fits = fits && pass.index.size() == n && pass.v.size() == n;
+        if (!fits) return Status::error("restored history level " + std::to_string(level) + " does not fit the extent");
+    }
+    terrain.heights_ = std::move(heights);
+    terrain.frozen_ = std::move(frozen);
+    terrain.history_ = std::make_shared<SynthesisHistory>(std::move(history));
     terrain.last_window_ = extent;
     return terrain;
 }
@@ -146,12 +181,11 @@ Status IncrementalTerrain::update(std::shared_ptr<const SynthesisConstraints> co
 // it, Frozen beyond and wherever a paste froze the terrain; re-synthesizes that window only.
 Status IncrementalTerrain::resynthesize(const PixelWindow& free_area, const std::vector<uint8_t>* free_mask,
                                         std::shared_ptr<const SynthesisConstraints> constraints, bool lift_points) {
-    const PixelWindow band = grow(free_area, kCoherentBand);
+    const PixelWindow band = growWindow(free_area, kCoherentBand);
     // Frozen pixels reached by the window's own margin (2 pixels per subpass at level 0) settle
     // the band's neighbourhoods exactly as a full synthesis would.
-    const PixelWindow window = intersect(grow(band, synth::kSubpassReach * 4 * params_.correction_passes), extent_);
+    const PixelWindow window = intersectWindows(growWindow(band, synth::kSubpassReach * 4 * params_.correction_passes), extent_);
     if (window.width == 0) return Status::ok();
-    if (frozen_.empty()) frozen_.assign(static_cast<size_t>(extent_.width) * extent_.height, 0);
     auto map = std::make_shared<CoherenceMap>();
     map->x = window.x, map->y = window.y, map->width = window.width, map->height = window.height;
     map->outside = Coherence::Frozen;
@@ -180,13 +214,15 @@ Status IncrementalTerrain::resynthesize(const PixelWindow& free_area, const std:
     params.record_history = true;
     auto out = synthesizer_->synthesize(window, params, 0, false);
     if (!out) return out.status();
+    record(0, window.x - extent_.x, window.y - extent_.y, window.width, window.height);
     for (int y = 0; y < window.height; ++y)
         for (int x = 0; x < window.width; ++x)
             heights_.at(static_cast<int>(window.x - extent_.x) + x, static_cast<int>(window.y - extent_.y) + y) =
                 out->heights.at(x, y);
     // The synthesis has finished reading the history, and nothing else holds it: merge in place.
     params.previous.reset();
-    mergeHistory(*history_, *out->history, synth::kSubpassReach * 4 * params_.correction_passes);
+    mergeHistory(*history_, *out->history, synth::kSubpassReach * 4 * params_.correction_passes,
+                 [&](int level, int64_t x, int64_t y, int64_t w, int64_t h) { recordHistory(level, x, y, w, h); });
     params_.constraints = params.constraints;
     last_window_ = window;
     return Status::ok();
@@ -204,10 +240,61 @@ bool insidePolygon(const std::vector<std::pair<double, double>>& poly, double x,
     return in;
 }
 
+std::vector<std::pair<double, double>> targetPolygon(const PasteConstraint& paste) {
+    std::vector<std::pair<double, double>> target = paste.source;
+    for (auto& [x, y] : target) x += paste.dx, y += paste.dy;
+    return target;
+}
+
+// The level-0 box of a polygon, clipped to `clip`.
+PixelWindow polygonBox(const std::vector<std::pair<double, double>>& polygon, const PixelWindow& clip) {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (auto [x, y] : polygon) x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+    const double lo = -static_cast<double>(synth::kMaxGlobalCoordinate), hi = static_cast<double>(synth::kMaxGlobalCoordinate);
+    x0 = std::clamp(std::floor(x0), lo, hi), y0 = std::clamp(std::floor(y0), lo, hi);
+    x1 = std::clamp(std::ceil(x1), lo, hi), y1 = std::clamp(std::ceil(y1), lo, hi);
+    return intersectWindows({static_cast<int64_t>(x0), static_cast<int64_t>(y0), static_cast<int>(x1 - x0) + 1,
+                             static_cast<int>(y1 - y0) + 1},
+                            clip);
+}
+
+// Pixels of one history level whose centres (in level-0 coordinates) lie inside `polygon`, visited
+// row by row as (x, y, row-major index).
+template <class Visit>
+void forEachLevelPixelInside(const SynthesisHistory::Level& l, int level, const std::vector<std::pair<double, double>>& polygon,
+                             Visit&& visit) {
+    const double cell = std::ldexp(1.0, level);
+    const int64_t scale = int64_t(1) << level;
+    const PixelWindow box = polygonBox(polygon, {l.x * scale, l.y * scale, static_cast<int>(l.width * scale),
+                                                 static_cast<int>(l.height * scale)});
+    if (box.empty()) return;
+    const int x0 = std::max(0, static_cast<int>((box.x >> level) - l.x) - 1);
+    const int y0 = std::max(0, static_cast<int>((box.y >> level) - l.y) - 1);
+    const int x1 = std::min(l.width, static_cast<int>(((box.x + box.width) >> level) - l.x) + 2);
+    const int y1 = std::min(l.height, static_cast<int>(((box.y + box.height) >> level) - l.y) + 2);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const double px = (l.x + x + 0.5) * cell - 0.5, py = (l.y + y + 0.5) * cell - 0.5;
+            if (insidePolygon(polygon, px, py)) visit(x, y, static_cast<size_t>(y) * l.width + x);
+        }
+}
+
 }  // namespace
 
+std::vector<uint8_t> pasteTargetMask(const PasteConstraint& paste, const PixelWindow& extent) {
+    std::vector<uint8_t> mask(static_cast<size_t>(extent.width) * extent.height, 0);
+    if (paste.source.size() < 3) return mask;
+    const auto target = targetPolygon(paste);
+    const PixelWindow box = polygonBox(target, extent);
+    for (int64_t y = box.y; y < box.y + box.height; ++y)
+        for (int64_t x = box.x; x < box.x + box.width; ++x)
+            if (insidePolygon(target, static_cast<double>(x), static_cast<double>(y)))
+                mask[static_cast<size_t>(y - extent.y) * extent.width + (x - extent.x)] = 1;
+    return mask;
+}
+
 void IncrementalTerrain::freeze(const TypePaint& mask) {
-    if (frozen_.empty()) frozen_.assign(static_cast<size_t>(extent_.width) * extent_.height, 0);
+    record(1, mask.x - extent_.x, mask.y - extent_.y, mask.width, mask.height);
     for (int y = 0; y < mask.height; ++y)
         for (int x = 0; x < mask.width; ++x) {
             const uint8_t v = mask.types[static_cast<size_t>(y) * mask.width + x];
@@ -217,64 +304,156 @@ void IncrementalTerrain::freeze(const TypePaint& mask) {
         }
 }
 
+void IncrementalTerrain::setFrozen(std::vector<uint8_t> mask) {
+    TERRASYNTH_REQUIRE(mask.size() == frozen_.size(), "setFrozen needs one value per extent pixel");
+    for (int y = 0; y < extent_.height; ++y)
+        for (int x = 0; x < extent_.width; ++x) {
+            const size_t i = static_cast<size_t>(y) * extent_.width + x;
+            const uint8_t v = mask[i] ? 1 : 0;
+            if (frozen_[i] == v) continue;
+            record(1, x, y, 1, 1);
+            frozen_[i] = v;
+        }
+}
+
 Status IncrementalTerrain::paste(const Paste& paste) {
     if (paste.source.size() < 3) return Status::error("paste: the source polygon needs at least 3 points");
     const ExemplarDatabase& db = synthesizer_->database();
     if (paste.exemplar >= static_cast<int>(db.exemplars.size()))
         return Status::error("paste: exemplar " + std::to_string(paste.exemplar) + " does not exist");
-    if (frozen_.empty()) frozen_.assign(static_cast<size_t>(extent_.width) * extent_.height, 0);
-    std::vector<std::pair<double, double>> target = paste.source;
-    for (auto& [x, y] : target) x += paste.dx, y += paste.dy;
-    // Write the source coordinates into every level and pass of the history at the target (s5.3:
-    // "store the relevant coordinate values S^i(Omega) for all levels and sub-passes").
-    const SynthesisHistory source_history = *history_;  // terrain sources read the state before the paste
+    const auto target = targetPolygon(paste);
+    const PixelWindow box = polygonBox(target, extent_);
+    if (box.empty()) return Status::error("paste: the target polygon lies outside the terrain's extent");
+    // s5.3: "store the relevant coordinate values S^i(Omega) for all levels and sub-passes". All
+    // writes are gathered first, from the history as it was before the paste (terrain sources read
+    // it), so a polygon that leaves its source changes nothing.
+    struct Write {
+        int level;
+        size_t pass, i;
+        uint32_t index;
+        float v;
+    };
+    std::vector<Write> writes;
     for (size_t level = 0; level < history_->levels.size(); ++level) {
-        auto& l = history_->levels[level];
+        const auto& l = history_->levels[level];
         if (l.width == 0) continue;
         const double cell = std::ldexp(1.0, static_cast<int>(level));
         const DatabaseLevel& dl = db.levels[level];
-        for (int y = 0; y < l.height; ++y)
-            for (int x = 0; x < l.width; ++x) {
-                // Level-0 position of this pixel's centre.
-                const double px = (l.x + x + 0.5) * cell - 0.5, py = (l.y + y + 0.5) * cell - 0.5;
-                if (!insidePolygon(target, px, py)) continue;
-                const double sx = px - paste.dx, sy = py - paste.dy;  // where it comes from, level 0
-                for (size_t pass = 0; pass < l.passes.size(); ++pass) {
-                    const size_t i = static_cast<size_t>(y) * l.width + x;
-                    if (paste.exemplar >= 0) {
-                        const AtlasRect& r = dl.rects[paste.exemplar];
-                        const int ex = static_cast<int>(std::lround((sx + 0.5) / cell - 0.5));
-                        const int ey = static_cast<int>(std::lround((sy + 0.5) / cell - 0.5));
-                        if (ex < kInteriorMargin || ey < kInteriorMargin || ex >= r.width - kInteriorMargin ||
-                            ey >= r.height - kInteriorMargin)
-                            return Status::error("paste: source polygon leaves exemplar " +
-                                                 db.exemplars[paste.exemplar].name + " at level " + std::to_string(level));
-                        l.passes[pass].index[i] = static_cast<uint32_t>((r.y + ey) * dl.width + r.x + ex);
-                        l.passes[pass].v[i] = paste.height_offset_m;
-                    } else {
-                        const auto& sl = source_history.levels[level];
-                        const int hx = static_cast<int>(std::lround((sx + 0.5) / cell - 0.5)) - sl.x;
-                        const int hy = static_cast<int>(std::lround((sy + 0.5) / cell - 0.5)) - sl.y;
-                        if (hx < 0 || hy < 0 || hx >= sl.width || hy >= sl.height)
-                            return Status::error("paste: source polygon leaves the terrain at level " + std::to_string(level));
-                        const size_t f = static_cast<size_t>(hy) * sl.width + hx;
-                        l.passes[pass].index[i] = sl.passes[pass].index[f];
-                        l.passes[pass].v[i] = sl.passes[pass].v[f] + paste.height_offset_m;
+        Status failed = Status::ok();
+        forEachLevelPixelInside(l, static_cast<int>(level), target, [&](int x, int y, size_t i) {
+            if (!failed) return;
+            // Where this pixel's centre comes from, in level-0 and then level coordinates.
+            const double sx = (l.x + x + 0.5) * cell - 0.5 - paste.dx, sy = (l.y + y + 0.5) * cell - 0.5 - paste.dy;
+            const long lx = std::lround((sx + 0.5) / cell - 0.5), ly = std::lround((sy + 0.5) / cell - 0.5);
+            for (size_t pass = 0; pass < l.passes.size(); ++pass) {
+                if (paste.exemplar >= 0) {
+                    const AtlasRect& r = dl.rects[paste.exemplar];
+                    if (lx < kInteriorMargin || ly < kInteriorMargin || lx >= r.width - kInteriorMargin ||
+                        ly >= r.height - kInteriorMargin) {
+                        failed = Status::error("paste: source polygon leaves exemplar " + db.exemplars[paste.exemplar].name +
+                                               " at level " + std::to_string(level));
+                        return;
                     }
+                    writes.push_back({static_cast<int>(level), pass, i,
+                                      static_cast<uint32_t>((r.y + ly) * dl.width + r.x + lx), paste.height_offset_m});
+                } else {
+                    const long hx = lx - l.x, hy = ly - l.y;
+                    if (hx < 0 || hy < 0 || hx >= l.width || hy >= l.height) {
+                        failed = Status::error("paste: source polygon leaves the terrain at level " + std::to_string(level));
+                        return;
+                    }
+                    const size_t f = static_cast<size_t>(hy) * l.width + hx;
+                    writes.push_back({static_cast<int>(level), pass, i, l.passes[pass].index[f],
+                                      l.passes[pass].v[f] + paste.height_offset_m});
                 }
             }
+        });
+        if (!failed) return failed;
+    }
+    for (const Write& w : writes) {
+        auto& l = history_->levels[w.level];
+        const int64_t x = l.x + static_cast<int64_t>(w.i % l.width), y = l.y + static_cast<int64_t>(w.i / l.width);
+        recordHistory(w.level, x, y, 1, 1);
+        l.passes[w.pass].index[w.i] = w.index;
+        l.passes[w.pass].v[w.i] = w.v;
     }
     // Freeze the target; the band around it is re-synthesized Free so the surroundings blend.
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (auto [x, y] : target) x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
-    const PixelWindow box = intersect({static_cast<int64_t>(std::floor(x0)), static_cast<int64_t>(std::floor(y0)),
-                                       static_cast<int>(std::ceil(x1 - x0)) + 1, static_cast<int>(std::ceil(y1 - y0)) + 1},
-                                      extent_);
-    for (int64_t y = box.y; y < box.y + box.height; ++y)
-        for (int64_t x = box.x; x < box.x + box.width; ++x)
-            if (insidePolygon(target, static_cast<double>(x), static_cast<double>(y)))
-                frozen_[static_cast<size_t>(y - extent_.y) * extent_.width + (x - extent_.x)] = 1;
-    return resynthesize(grow(box, kCoherentBand), nullptr, params_.constraints, false);
+    const std::vector<uint8_t> covered = pasteTargetMask(paste, extent_);
+    record(1, box.x - extent_.x, box.y - extent_.y, box.width, box.height);
+    for (size_t i = 0; i < covered.size(); ++i) frozen_[i] |= covered[i];
+    return resynthesize(growWindow(box, kCoherentBand), nullptr, params_.constraints, false);
+}
+
+Status IncrementalTerrain::removePaste(const Paste& paste, std::vector<uint8_t> frozen_after) {
+    TERRASYNTH_REQUIRE(frozen_after.size() == frozen_.size(), "removePaste needs one frozen value per extent pixel");
+    if (paste.source.size() < 3) return Status::error("paste: the source polygon needs at least 3 points");
+    const auto target = targetPolygon(paste);
+    const PixelWindow box = polygonBox(target, extent_);
+    if (box.empty()) return Status::ok();
+    // Forgotten coordinates offer no previous candidate: the Free re-synthesis starts afresh there.
+    for (size_t level = 0; level < history_->levels.size(); ++level) {
+        auto& l = history_->levels[level];
+        if (l.width == 0) continue;
+        forEachLevelPixelInside(l, static_cast<int>(level), target, [&](int x, int y, size_t i) {
+            recordHistory(static_cast<int>(level), l.x + x, l.y + y, 1, 1);
+            for (auto& pass : l.passes) pass.index[i] = synth::kNoPrevious;
+        });
+    }
+    setFrozen(std::move(frozen_after));
+    return resynthesize(growWindow(box, kCoherentBand), nullptr, params_.constraints, false);
+}
+
+// ---- Undo journal ----
+
+IncrementalTerrain::Journal::Journal() = default;
+IncrementalTerrain::Journal::Journal(Journal&&) noexcept = default;
+IncrementalTerrain::Journal& IncrementalTerrain::Journal::operator=(Journal&&) noexcept = default;
+IncrementalTerrain::Journal::~Journal() = default;
+bool IncrementalTerrain::Journal::empty() const { return !tiles_ || tiles_->empty(); }
+size_t IncrementalTerrain::Journal::bytes() const { return tiles_ ? tiles_->bytes() : 0; }
+
+void IncrementalTerrain::beginJournal() {
+    if (!journal_) journal_ = std::make_unique<detail::TileJournal>();
+}
+
+IncrementalTerrain::Journal IncrementalTerrain::takeJournal() {
+    Journal j;
+    j.tiles_ = std::move(journal_);
+    return j;
+}
+
+namespace {
+constexpr int kFirstHistoryPlane = 2;
+}  // namespace
+
+void IncrementalTerrain::swapJournal(Journal& journal) {
+    if (!journal.tiles_) return;
+    const int passes = params_.correction_passes;
+    journal.tiles_->swap([&](int id) -> detail::JournalPlane {
+        if (id == 0) return {heights_.heights.data(), heights_.width, heights_.height, sizeof(float)};
+        if (id == 1) return {frozen_.data(), extent_.width, extent_.height, 1};
+        const int k = (id - kFirstHistoryPlane) / 2, level = k / passes, pass = k % passes;
+        auto& l = history_->levels[level];
+        if ((id - kFirstHistoryPlane) % 2 == 0) return {l.passes[pass].index.data(), l.width, l.height, sizeof(uint32_t)};
+        return {l.passes[pass].v.data(), l.width, l.height, sizeof(float)};
+    });
+}
+
+void IncrementalTerrain::record(int plane, int64_t x, int64_t y, int64_t w, int64_t h) {
+    if (!journal_) return;
+    if (plane == 0) journal_->record(0, {heights_.heights.data(), heights_.width, heights_.height, sizeof(float)}, x, y, w, h);
+    else journal_->record(1, {frozen_.data(), extent_.width, extent_.height, 1}, x, y, w, h);
+}
+
+void IncrementalTerrain::recordHistory(int level, int64_t gx, int64_t gy, int64_t w, int64_t h) {
+    if (!journal_) return;
+    auto& l = history_->levels[level];
+    const int passes = params_.correction_passes;
+    for (int pass = 0; pass < static_cast<int>(l.passes.size()); ++pass) {
+        const int id = kFirstHistoryPlane + 2 * (level * passes + pass);
+        journal_->record(id, {l.passes[pass].index.data(), l.width, l.height, sizeof(uint32_t)}, gx - l.x, gy - l.y, w, h);
+        journal_->record(id + 1, {l.passes[pass].v.data(), l.width, l.height, sizeof(float)}, gx - l.x, gy - l.y, w, h);
+    }
 }
 
 }  // namespace terrasynth
