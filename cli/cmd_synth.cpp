@@ -123,22 +123,15 @@ void runCoherentEdit(const SynthArgs& args, const TerrainOptions& options, Terra
     const auto done = std::chrono::steady_clock::now();
     Status s = writeOutputs(args, heights.value());
     if (!s) return fail("synth", s.message());
-    // How much moved outside the changed area (the coherent band is re-synthesized too).
-    size_t outside = 0, moved = 0;
-    for (int y = 0; y < heights->height; ++y)
-        for (int x = 0; x < heights->width; ++x) {
-            const int64_t gx = edited.extent().x + x, gy = edited.extent().y + y;
-            if (gx >= changed.x && gy >= changed.y && gx < changed.x + changed.width && gy < changed.y + changed.height)
-                continue;
-            ++outside;
-            moved += std::fabs(heights->at(x, y) - before.at(x, y)) > 1.0f;
-        }
+    // How far the edit reached: the box of what changed, and how much of the extent moved by more than 1 m.
+    size_t moved = 0;
+    for (size_t i = 0; i < heights->heights.size(); ++i) moved += std::fabs(heights->heights[i] - before.heights[i]) > 1.0f;
     std::printf("wrote %s: %dx%d as an edit of %s in %.1f ms\n", args.output.c_str(), heights->width, heights->height,
                 args.coherent_with.c_str(), std::chrono::duration<double, std::milli>(done - start).count());
-    std::printf("changed constraints reach %dx%d pixels at (%lld, %lld); outside it %zu of %zu pixels (%.3f%%) moved > 1 m\n",
+    std::printf("heights changed within %dx%d pixels at (%lld, %lld); %zu of %zu pixels (%.3f%%) moved > 1 m\n",
                 changed.width, changed.height, static_cast<long long>(changed.x - edited.extent().x),
-                static_cast<long long>(changed.y - edited.extent().y), moved, outside,
-                outside ? 100.0 * moved / outside : 0.0);
+                static_cast<long long>(changed.y - edited.extent().y), moved, heights->heights.size(),
+                100.0 * moved / std::max<size_t>(1, heights->heights.size()));
     reportPointSites(edited, edited.extent(), heights.value());
 }
 

@@ -75,6 +75,9 @@ bool gdalAvailable();
 Status writeHillshadePng(const std::string& path, const Heightfield& field);
 
 // Low-level image writers used by other stages (sources maps, masks). Row-major samples.
+// The encoders return the PNG file's bytes (for FileTransaction); the writers write them atomically.
+Result<std::string> encodePng16(int width, int height, int channels, const std::vector<uint16_t>& samples);
+Result<std::string> encodePng8(int width, int height, int channels, const std::vector<uint8_t>& samples);
 Status writePng16(const std::string& path, int width, int height, int channels,
                   const std::vector<uint16_t>& samples);
 Status writePng8(const std::string& path, int width, int height, int channels,

@@ -98,6 +98,8 @@ public:
         ~Journal();
         bool empty() const;
         size_t bytes() const;  // memory it holds
+        // Merges a journal recorded after this one: the result undoes both.
+        void absorb(Journal&& later);
 
     private:
         friend class IncrementalTerrain;

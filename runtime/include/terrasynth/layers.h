@@ -157,6 +157,12 @@ public:
     Status replaceLayer(int index, EditLayer layer);  // change a layer's tool parameters or name
     Status setBase(BaseLayer base);
     Status setBandSplit(BandSplit split);
+    // Replaces the whole stack (validated like parseLayerStack) as one undo step.
+    Status setStack(LayerStack stack);
+    // Replaces the synthesized terrain the stack is composed over (BaseSource::Synthesized), e.g.
+    // after a constraint edit; same size and spacing. Not an undo step: the terrain is not part of the
+    // stack. Layers that do not read the terrain below keep their cached content.
+    Status setSynthesizedTerrain(Heightfield terrain);
     // Merges layers[index] into the layer below it (index-1) as one group layer with unit weights,
     // which composes to the same terrain as the two did (up to float rounding).
     Status mergeDown(int index);

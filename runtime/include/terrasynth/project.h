@@ -31,6 +31,9 @@ struct Project {
     // array (parseLayerStack, layers.h).
     std::string constraints_json = "{}";
     std::string layers_json = "[]";
+    // The edited-heights sidecar an edit session saved beside the project ("" = none): what the
+    // designer saw, loaded instead of re-synthesizing while its digest matches (edit_session.h).
+    std::string edited_heights;
 
     // Where the database cache lives: `database` if set, else "<project stem>.tsdb" beside it.
     std::string databaseCachePath() const;
@@ -45,7 +48,10 @@ Result<Project> parseProject(const std::string& json_text, const std::string& pa
                              const std::string& base_dir);
 // Atomic: the previous file survives any failure.
 Status saveProject(const Project& project, const std::string& path);
-std::string projectToJson(const Project& project);
+// The project's JSON text. With `folder` (where the file will live), paths inside it are written
+// relative to it and all others absolute; without, paths are written as they are held.
+// Precondition: constraints_json and layers_json are valid JSON (saveProject checks).
+std::string projectToJson(const Project& project, const std::string& folder = "");
 
 // Loads the project's database (from `database`, or the cache rebuilt when stale).
 Result<std::shared_ptr<const ExemplarDatabase>> openProjectDatabase(const Project& project,

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
+
+#include <unistd.h>
 
 namespace terrasynth::detail {
 namespace {
@@ -54,5 +57,29 @@ std::string replaceExtension(const std::string& path, const std::string& suffix)
 }
 
 std::string sidecarPathFor(const std::string& path) { return replaceExtension(path, ".json"); }
+
+std::string absolutePath(const std::string& path) {
+    if (path.empty() || path[0] == '/') return path;
+    char cwd[PATH_MAX];
+    if (!::getcwd(cwd, sizeof cwd)) return path;
+    std::string out = cwd;
+    for (size_t at = 0; at < path.size();) {
+        size_t slash = path.find('/', at);
+        if (slash == std::string::npos) slash = path.size();
+        const std::string part = path.substr(at, slash - at);
+        if (part == "..") out = folderOf(out);
+        else if (!part.empty() && part != ".") out += (out == "/" ? "" : "/") + part;
+        at = slash + 1;
+    }
+    return out;
+}
+
+std::string pathForFileIn(const std::string& folder, const std::string& path) {
+    if (path.empty()) return path;
+    const std::string dir = absolutePath(folder), target = absolutePath(path);
+    if (target.size() > dir.size() + 1 && target.compare(0, dir.size(), dir) == 0 && target[dir.size()] == '/')
+        return target.substr(dir.size() + 1);
+    return target;
+}
 
 }  // namespace terrasynth::detail

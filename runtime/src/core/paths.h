@@ -22,4 +22,10 @@ std::string sidecarPathFor(const std::string& path);
 // "dir/name.png" -> "dir/name" + suffix (the extension replaced; appended when there is none).
 std::string replaceExtension(const std::string& path, const std::string& suffix);
 
+// `path` made absolute against the current directory (no symlinks resolved); "" stays "".
+std::string absolutePath(const std::string& path);
+// `path` as written in a file that lives in `folder`: relative when it lies inside that folder,
+// otherwise absolute (so the file can be moved with what it names, and read from anywhere).
+std::string pathForFileIn(const std::string& folder, const std::string& path);
+
 }  // namespace terrasynth::detail

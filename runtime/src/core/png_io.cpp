@@ -93,8 +93,7 @@ const char* describeChannels(int channels) {
     }
 }
 
-Status encodePng(const std::string& path, int width, int height, int channels, int depth,
-                 const uint8_t* big_endian_rows) {
+Result<std::string> encodePng(int width, int height, int channels, int depth, const uint8_t* big_endian_rows) {
     TERRASYNTH_REQUIRE(width > 0 && height > 0 && channels >= 1 && channels <= 4, "bad PNG layout");
     std::string encoded;
     std::string error;
@@ -102,11 +101,11 @@ Status encodePng(const std::string& path, int width, int height, int channels, i
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info) {
         png_destroy_write_struct(&png, &info);
-        return Status::error(path + ": out of memory creating PNG encoder");
+        return Status::error("out of memory creating a PNG encoder");
     }
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
-        return Status::error(path + ": PNG encoding failed: " + error);
+        return Status::error("PNG encoding failed: " + error);
     }
     static const int kColorTypes[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                       PNG_COLOR_TYPE_RGB_ALPHA};
@@ -120,7 +119,21 @@ Status encodePng(const std::string& path, int width, int height, int channels, i
         png_write_row(png, const_cast<png_bytep>(big_endian_rows + stride * y));
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    return writeFileAtomically(path, encoded);
+    return encoded;
+}
+
+std::vector<uint8_t> bigEndian16(const std::vector<uint16_t>& samples) {
+    std::vector<uint8_t> big_endian(samples.size() * 2);
+    for (size_t i = 0; i < samples.size(); ++i) {
+        big_endian[2 * i] = static_cast<uint8_t>(samples[i] >> 8);
+        big_endian[2 * i + 1] = static_cast<uint8_t>(samples[i] & 0xff);
+    }
+    return big_endian;
+}
+
+Status writeEncoded(const std::string& path, const Result<std::string>& encoded) {
+    if (!encoded) return encoded.status().withContext(path);
+    return writeFileAtomically(path, *encoded);
 }
 
 }  // namespace
@@ -148,21 +161,24 @@ Result<Image8> readPng8(const std::string& path) {
     return Image8{png.width, png.height, png.channels, std::move(png.raw)};
 }
 
+Result<std::string> encodePng16(int width, int height, int channels, const std::vector<uint16_t>& samples) {
+    TERRASYNTH_REQUIRE(samples.size() == static_cast<size_t>(width) * height * channels, "sample count");
+    return encodePng(width, height, channels, 16, bigEndian16(samples).data());
+}
+
+Result<std::string> encodePng8(int width, int height, int channels, const std::vector<uint8_t>& samples) {
+    TERRASYNTH_REQUIRE(samples.size() == static_cast<size_t>(width) * height * channels, "sample count");
+    return encodePng(width, height, channels, 8, samples.data());
+}
+
 Status writePng16(const std::string& path, int width, int height, int channels,
                   const std::vector<uint16_t>& samples) {
-    TERRASYNTH_REQUIRE(samples.size() == static_cast<size_t>(width) * height * channels, "sample count");
-    std::vector<uint8_t> big_endian(samples.size() * 2);
-    for (size_t i = 0; i < samples.size(); ++i) {
-        big_endian[2 * i] = static_cast<uint8_t>(samples[i] >> 8);
-        big_endian[2 * i + 1] = static_cast<uint8_t>(samples[i] & 0xff);
-    }
-    return encodePng(path, width, height, channels, 16, big_endian.data());
+    return writeEncoded(path, encodePng16(width, height, channels, samples));
 }
 
 Status writePng8(const std::string& path, int width, int height, int channels,
                  const std::vector<uint8_t>& samples) {
-    TERRASYNTH_REQUIRE(samples.size() == static_cast<size_t>(width) * height * channels, "sample count");
-    return encodePng(path, width, height, channels, 8, samples.data());
+    return writeEncoded(path, encodePng8(width, height, channels, samples));
 }
 
 }  // namespace terrasynth

@@ -15,6 +15,7 @@ void TileJournal::record(int id, const JournalPlane& plane, int64_t x, int64_t y
             const uint64_t key = (static_cast<uint64_t>(id) << 48) ^ (static_cast<uint64_t>(ty) << 24) ^ static_cast<uint64_t>(tx);
             if (!seen_.insert(key).second) continue;
             Tile t;
+            t.key = key;
             t.plane = id;
             t.x0 = static_cast<int>(tx * kTile), t.y0 = static_cast<int>(ty * kTile);
             t.w = std::min(kTile, plane.width - t.x0), t.h = std::min(kTile, plane.height - t.y0);
@@ -27,6 +28,17 @@ void TileJournal::record(int id, const JournalPlane& plane, int64_t x, int64_t y
             bytes_ += t.saved.size();
             tiles_.push_back(std::move(t));
         }
+}
+
+void TileJournal::absorb(TileJournal&& later) {
+    for (Tile& t : later.tiles_) {
+        if (!seen_.insert(t.key).second) continue;
+        bytes_ += t.saved.size();
+        tiles_.push_back(std::move(t));
+    }
+    later.tiles_.clear();
+    later.seen_.clear();
+    later.bytes_ = 0;
 }
 
 void TileJournal::swap(const std::function<JournalPlane(int id)>& plane_of) {

@@ -31,12 +31,16 @@ public:
     void record(int id, const JournalPlane& plane, int64_t x, int64_t y, int64_t w, int64_t h);
     // Exchanges every saved tile with the current content of its plane (looked up by id).
     void swap(const std::function<JournalPlane(int id)>& plane_of);
+    // Adds the tiles of a journal recorded after this one that this one has not saved: the merged
+    // journal undoes both steps at once.
+    void absorb(TileJournal&& later);
     bool empty() const { return tiles_.empty(); }
     // Bytes held by saved tiles.
     size_t bytes() const { return bytes_; }
 
 private:
     struct Tile {
+        uint64_t key;
         int plane, x0, y0, w, h;  // element rectangle of the tile, clipped to its plane
         std::vector<uint8_t> saved;
     };

@@ -20,7 +20,13 @@ uint64_t weightBits(const BandWeights& w) {
 
 }  // namespace
 
-StackEvaluator::StackEvaluator(Heightfield synthesized) : synthesized_(std::move(synthesized)) {
+StackEvaluator::StackEvaluator(Heightfield synthesized) { setSynthesized(std::move(synthesized)); }
+
+void StackEvaluator::setSynthesized(Heightfield synthesized) {
+    TERRASYNTH_REQUIRE(synthesized_.empty() || (synthesized.width == synthesized_.width &&
+                                                synthesized.height == synthesized_.height),
+                       "the synthesized base keeps its grid");
+    synthesized_ = std::move(synthesized);
     std::string bytes(reinterpret_cast<const char*>(synthesized_.heights.data()),
                       synthesized_.heights.size() * sizeof(float));
     synthesized_print_ = mixIn(fingerprint(bytes), (static_cast<uint64_t>(synthesized_.width) << 32) ^ synthesized_.height);

@@ -21,6 +21,9 @@ public:
     explicit StackEvaluator(Heightfield synthesized);
 
     const Heightfield& grid() const { return synthesized_; }
+    // Replaces the synthesized base (same size and spacing). Contents that do not read the terrain
+    // below stay cached; those that do are keyed by it and rebuilt on demand.
+    void setSynthesized(Heightfield synthesized);
     // The plan for the visible layers among stack.layers[0, upto) (upto < 0: all of them).
     Result<CompositionPlan> plan(const LayerStack& stack, int upto = -1);
     Heightfield compose(const CompositionPlan& plan);

@@ -196,6 +196,27 @@ Status LayerEditor::setBandSplit(BandSplit split) {
     });
 }
 
+Status LayerEditor::setStack(LayerStack stack) {
+    if (Status s = validateBandSplit(stack.bands); !s) return s.withContext("layers[0].band_cuts_px");
+    for (size_t i = 0; i < stack.layers.size(); ++i)
+        if (Status s = validateEditLayer(stack.layers[i], "layers[" + std::to_string(i + 1) + "]"); !s) return s;
+    return impl_->edit([&](LayerStack& s) {
+        s = std::move(stack);
+        return Status::ok();
+    });
+}
+
+Status LayerEditor::setSynthesizedTerrain(Heightfield terrain) {
+    const Heightfield& grid = impl_->evaluator.grid();
+    if (terrain.width != grid.width || terrain.height != grid.height ||
+        terrain.heights.size() != static_cast<size_t>(terrain.width) * terrain.height)
+        return Status::error("layers: the synthesized terrain must keep the grid size " + std::to_string(grid.width) +
+                             "x" + std::to_string(grid.height));
+    impl_->evaluator.setSynthesized(std::move(terrain));
+    impl_->current = false;
+    return Status::ok();
+}
+
 Status LayerEditor::mergeDown(int index) {
     return impl_->edit([&](LayerStack& s) {
         const int n = static_cast<int>(s.layers.size());

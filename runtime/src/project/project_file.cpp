@@ -85,6 +85,7 @@ Result<Project> parseProject(const std::string& text, const std::string& file, c
         if (!c->is_object()) r.fail("constraints", "must be an object");
         else p.constraints_json = c->dump();
     }
+    p.edited_heights = detail::resolveRelative(base_dir, r.string("edited_heights", ""));
     if (const json* l = r.child("layers")) {
         if (!l->is_array()) r.fail("layers", "must be an array");
         else p.layers_json = l->dump();
@@ -99,7 +100,8 @@ Result<Project> loadProject(const std::string& path) {
     return parseProject(bytes.value(), path, detail::folderOf(path));
 }
 
-std::string projectToJson(const Project& p) {
+std::string projectToJson(const Project& p, const std::string& folder) {
+    auto written = [&](const std::string& path) { return folder.empty() ? path : detail::pathForFileIn(folder, path); };
     json j = {
         {"format", "terrasynth-project"},
         {"version", Project::kFormatVersion},
@@ -117,13 +119,21 @@ std::string projectToJson(const Project& p) {
         {"constraints", json::parse(p.constraints_json, nullptr, false)},
         {"layers", json::parse(p.layers_json, nullptr, false)},
     };
-    if (!p.exemplars.empty()) j["exemplars"] = p.exemplars;
-    if (!p.database.empty()) j["database"] = p.database;
+    if (!p.exemplars.empty()) {
+        json& list = j["exemplars"] = json::array();
+        for (const std::string& e : p.exemplars) list.push_back(written(e));
+    }
+    if (!p.database.empty()) j["database"] = written(p.database);
+    if (!p.edited_heights.empty()) j["edited_heights"] = written(p.edited_heights);
     return j.dump(2) + "\n";
 }
 
 Status saveProject(const Project& project, const std::string& path) {
-    return writeFileAtomically(path, projectToJson(project));
+    for (const std::string* text : {&project.constraints_json, &project.layers_json})
+        if (json::parse(*text, nullptr, false).is_discarded())
+            return Status::error(path + ": the project's " + (text == &project.layers_json ? "layers" : "constraints") +
+                                 " are not valid JSON");
+    return writeFileAtomically(path, projectToJson(project, detail::folderOf(path)));
 }
 
 Result<std::shared_ptr<const ExemplarDatabase>> openProjectDatabase(const Project& project,

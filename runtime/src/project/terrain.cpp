@@ -1,16 +1,47 @@
 // Terrain: a project ready for height queries. Synthesis is a pure function of the global pixel
-// (windowed). Edits that need the whole extent (freeze and pastes, s5.3; the layer stack of Bradbury
-// et al. 2014) act inside the project's extent as a cached height *difference*:
-// window = synthesis(window) + edit(window), where the edit is zero outside the extent and
-// box-averaged for coarser levels, so tiles stay seamless at every level.
+// (windowed). What changes the extent beyond one synthesis (freeze and pastes, s5.3; the layer stack
+// of Bradbury et al. 2014; an edit session's saved heights) is computed once, on first need, as an
+// ExtentEdit over the reference synthesis (project/world_view.h): the same definition an edit
+// session's snapshots use.
 #include "terrasynth/terrain.h"
 
 #include <cmath>
+#include <mutex>
 
-#include "terrasynth/incremental.h"
+#include "project/edit_sidecar.h"
+#include "project/extent_build.h"
+#include "project/world_view.h"
+#include "synth/constraints_json.h"
 #include "terrasynth/layers.h"
 
 namespace terrasynth {
+
+struct Terrain::Impl {
+    Project project;
+    TerrainOptions options;
+    std::shared_ptr<project::SynthesizerPool> pool;
+    std::unique_ptr<project::WorldView> world;
+    // Set when the sidecar was accepted: the synthesized extent before the layer stack.
+    std::shared_ptr<const std::vector<float>> saved_base;
+    std::vector<std::string> warnings;
+
+    std::mutex edit_mutex;
+    bool edit_ready = false;
+    std::shared_ptr<const project::ExtentEdit> edit;  // null: the extent is the reference synthesis
+
+    void warn(const std::string& message) {
+        warnings.push_back(message);
+        if (options.on_warning) options.on_warning(message);
+    }
+    bool hasExtentEdit() const {
+        return saved_base || project.hasLayers() || project::needsIncrementalBuild(project.synthesis.constraints.get());
+    }
+    Result<const project::ExtentEdit*> extentEdit();
+    Status adoptSidecar(Synthesizer& synthesizer);
+};
+
+Terrain::Terrain(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Terrain::~Terrain() = default;
 
 Result<std::shared_ptr<Terrain>> Terrain::open(const std::string& project_path, const TerrainOptions& options) {
     auto project = loadProject(project_path);
@@ -25,139 +56,159 @@ Result<std::shared_ptr<Terrain>> Terrain::fromProject(Project project, const Ter
     }
     auto db = openProjectDatabase(project, options.database);
     if (!db) return db.status();
-    auto constraints = parseConstraints(project.constraints_json, project.folder(), *db.value(), project.origin_x, project.origin_y,
-                                        project.width, project.height);
-    if (!constraints) return constraints.status().withContext(project.path);
-    if (!constraints->empty())
-        project.synthesis.constraints = std::make_shared<const SynthesisConstraints>(std::move(constraints.value()));
-    std::shared_ptr<Terrain> terrain(new Terrain(std::move(project), db.value(), options));
+    auto constraints = project::projectConstraints(project, *db.value());
+    if (!constraints) return constraints.status();
+    auto impl = std::make_unique<Impl>();
+    impl->options = options;
+    impl->pool = std::make_shared<project::SynthesizerPool>(db.value(), options.synthesizer);
     // Fail early (missing OpenCL device, kernel build) rather than on the first tile.
-    auto synthesizer = terrain->synthesizerForThisThread();
+    auto synthesizer = impl->pool->forThisThread();
     if (!synthesizer) return synthesizer.status();
-    // Lifted once here, so every window and tile synthesizes with the same targets.
-    SynthesisParams& params = terrain->project_.synthesis;
-    if (terrain->project_.hold_point_heights && params.constraints && !params.constraints->points.empty()) {
-        auto lifted = liftPointConstraints(*synthesizer.value(), params);
-        if (!lifted) return lifted.status().withContext(terrain->project_.path + ": constraints.points");
-        params.constraints = std::move(lifted.value());
+    impl->project = std::move(project);
+    impl->project.synthesis.constraints = constraints.value();
+    if (!impl->project.edited_heights.empty())
+        if (Status s = impl->adoptSidecar(*synthesizer.value()); !s) return s;
+    if (!impl->world) {
+        // Lifted once here, so every window and tile synthesizes with the same targets.
+        auto reference = project::referenceParams(*synthesizer.value(), impl->project, constraints.value());
+        if (!reference) return reference.status();
+        impl->project.synthesis.constraints = reference->constraints;
+        impl->world = std::make_unique<project::WorldView>(impl->pool, reference.value());
     }
-    return terrain;
+    return std::shared_ptr<Terrain>(new Terrain(std::move(impl)));
 }
 
-double Terrain::metersPerPixel(int level) const { return db_->meters_per_pixel * std::ldexp(1.0, level); }
-
-Result<Synthesizer*> Terrain::synthesizerForThisThread() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto& slot = synthesizers_[std::this_thread::get_id()];
-    if (!slot) {
-        auto created = Synthesizer::create(db_, options_.synthesizer);
-        if (!created) return created.status();
-        slot = std::move(created.value());
+// The sidecar an edit session saved: its heights replace the fresh synthesis while its digest matches
+// the project; a missing, unreadable or stale one is a warning and the project is synthesized afresh.
+Status Terrain::Impl::adoptSidecar(Synthesizer& synthesizer) {
+    const std::string& path = project.edited_heights;
+    const ExemplarDatabase& db = pool->database();
+    auto reject = [&](const std::string& why) {
+        warn(project.path + ": edited heights " + path + " " + why + "; synthesizing the project afresh");
+        return Status::ok();
+    };
+    auto bytes = readFileBytes(path);
+    if (!bytes) return reject("cannot be read (" + bytes.message() + ")");
+    auto digest = project::projectEditDigest(project, db);
+    if (!digest) return digest.status().withContext(project.path);
+    auto stored = project::sidecarDigest(*bytes, path);
+    if (!stored) return reject("are unusable (" + stored.message() + ")");
+    if (*stored != *digest) return reject("belong to another version of the project (digest mismatch)");
+    auto sidecar = project::decodeEditSidecar(*bytes, path, /*with_history=*/false);
+    if (!sidecar) return reject("are unusable (" + sidecar.message() + ")");
+    const PixelWindow extent{project.origin_x, project.origin_y, project.width, project.height};
+    if (sidecar->extent != extent) return reject("cover another extent");
+    auto reference = synth::parseConstraintsJson(nlohmann::json::parse(sidecar->reference.json), synth::masksFrom(sidecar->reference),
+                                                 db, extent.x, extent.y, extent.width, extent.height);
+    if (!reference) return reject("hold an unreadable reference (" + reference.message() + ")");
+    auto& current = project.synthesis.constraints;
+    const size_t points = current ? current->points.size() : 0;
+    if (sidecar->lifts.size() != points || sidecar->reference_lifts.size() != reference->points.size())
+        return reject("hold lifts for other points");
+    // The project's points as the session left them (their lifts), and the reference it synthesized
+    // the world around the extent with.
+    if (current) {
+        auto lifted = std::make_shared<SynthesisConstraints>(*current);
+        for (size_t i = 0; i < points; ++i) lifted->points[i].lift_m = sidecar->lifts[i];
+        current = lifted;
     }
-    return slot.get();
+    for (size_t i = 0; i < reference->points.size(); ++i) reference->points[i].lift_m = sidecar->reference_lifts[i];
+    SynthesisParams params = project.synthesis;
+    params.constraints.reset();
+    if (!reference->empty()) params.constraints = std::make_shared<const SynthesisConstraints>(std::move(reference.value()));
+    world = std::make_unique<project::WorldView>(pool, params);
+    saved_base = std::make_shared<const std::vector<float>>(std::move(sidecar->heights));
+    (void)synthesizer;
+    return Status::ok();
 }
 
-bool Terrain::hasExtentEdit() const {
-    const auto& c = project_.synthesis.constraints;
-    return project_.hasLayers() || (c && (!c->freeze.empty() || !c->pastes.empty()));
+const Project& Terrain::project() const { return impl_->project; }
+const ExemplarDatabase& Terrain::database() const { return impl_->pool->database(); }
+std::shared_ptr<const ExemplarDatabase> Terrain::databasePtr() const { return impl_->pool->databasePtr(); }
+double Terrain::metersPerPixel(int level) const { return database().meters_per_pixel * std::ldexp(1.0, level); }
+PixelWindow Terrain::extent() const {
+    const Project& p = impl_->project;
+    return {p.origin_x, p.origin_y, p.width, p.height};
 }
+bool Terrain::usesEditedHeights() const { return impl_->saved_base != nullptr; }
+std::vector<std::string> Terrain::warnings() const { return impl_->warnings; }
 
-// The extent as the user shaped it: synthesis with constraints, then (s5.3) the freeze brush and
-// pastes through coherent re-synthesis, then the layer stack.
-Result<Heightfield> Terrain::shapedExtent(Synthesizer& synthesizer) {
-    const auto& c = project_.synthesis.constraints;
-    if (!c || (c->freeze.empty() && c->pastes.empty())) {
-        auto out = synthesizer.synthesize(extent(), project_.synthesis, 0, false);
-        if (!out) return out.status();
-        return std::move(out->heights);
-    }
-    // Frozen pixels keep the terrain the seed alone makes; constraints act everywhere else.
-    SynthesisParams plain = project_.synthesis;
-    plain.constraints.reset();
-    auto incremental = IncrementalTerrain::create(synthesizer, extent(), plain);
-    if (!incremental) return incremental.status();
-    incremental->holdPointHeights(project_.hold_point_heights);
-    incremental->freeze(c->freeze);
-    if (c->shapesTerrain()) {
-        auto shaping = std::make_shared<SynthesisConstraints>(*c);
-        shaping->freeze = TypePaint();
-        shaping->pastes.clear();
-        Status s = incremental->update(shaping, extent());
-        if (!s) return s;
-    }
-    for (size_t i = 0; i < c->pastes.size(); ++i) {
-        Status s = incremental->paste(c->pastes[i]);
-        if (!s) return s.withContext(project_.path + ": constraints.pastes[" + std::to_string(i) + "]");
-    }
-    return incremental->heights();
-}
-
-Result<const std::vector<float>*> Terrain::extentEdit() {
-    std::lock_guard<std::mutex> lock(edit_mutex_);
-    if (edit_ready_) return &edit_;
-    auto synthesizer = synthesizerForThisThread();
+// The extent as the user shaped it, once: the saved heights or a fresh build (freeze and pastes through
+// coherent re-synthesis, s5.3), then the layer stack; and the reference synthesis under it.
+Result<const project::ExtentEdit*> Terrain::Impl::extentEdit() {
+    std::lock_guard<std::mutex> lock(edit_mutex);
+    if (edit_ready) return edit.get();
+    auto synthesizer = pool->forThisThread();
     if (!synthesizer) return synthesizer.status();
-    auto shaped = shapedExtent(*synthesizer.value());
-    if (!shaped) return shaped.status();
-    if (project_.hasLayers()) {
-        auto stack = parseLayerStack(project_.layers_json, project_.folder());
-        if (!stack) return stack.status().withContext(project_.path);
-        auto layered = applyLayerStack(stack.value(), shaped.value());
-        if (!layered) return layered.status().withContext(project_.path);
-        if (layered->width != shaped->width || layered->height != shaped->height)
-            return Status::error(project_.path + ": layer stack changed the terrain size");
+    const PixelWindow e{project.origin_x, project.origin_y, project.width, project.height};
+    auto reference = synthesizer.value()->synthesize(e, world->reference(), 0, false);
+    if (!reference) return reference.status();
+    Heightfield shaped;
+    if (saved_base) {
+        shaped = Heightfield(e.width, e.height, pool->database().meters_per_pixel);
+        shaped.heights = *saved_base;
+    } else if (project::needsIncrementalBuild(world->reference().constraints.get())) {
+        auto built = project::buildExtentHeights(*synthesizer.value(), e, world->reference(), project.hold_point_heights,
+                                                 project.path);
+        if (!built) return built.status();
+        shaped = std::move(built.value());
+    } else {
+        shaped = reference->heights;
+    }
+    if (project.hasLayers()) {
+        auto stack = parseLayerStack(project.layers_json, project.folder());
+        if (!stack) return stack.status().withContext(project.path);
+        auto layered = applyLayerStack(stack.value(), shaped);
+        if (!layered) return layered.status().withContext(project.path);
+        if (layered->width != shaped.width || layered->height != shaped.height)
+            return Status::error(project.path + ": layer stack changed the terrain size");
         shaped = std::move(layered.value());
     }
-    auto plain = synthesizer.value()->synthesize(extent(), project_.synthesis, 0, false);
-    if (!plain) return plain.status();
-    edit_.resize(plain->heights.size());
-    for (size_t i = 0; i < edit_.size(); ++i) edit_[i] = shaped->heights[i] - plain->heights.heights[i];
-    shaped_ = std::move(shaped->heights);
-    edit_ready_ = true;
-    return &edit_;
+    edit = std::make_shared<const project::ExtentEdit>(
+        e, std::make_shared<const std::vector<float>>(std::move(shaped.heights)),
+        std::make_shared<const std::vector<float>>(std::move(reference->heights.heights)));
+    edit_ready = true;
+    return edit.get();
 }
 
 Result<SynthesisOutput> Terrain::synthesize(const PixelWindow& window, int level, bool want_sources) {
-    auto synthesizer = synthesizerForThisThread();
-    if (!synthesizer) return synthesizer.status();
-    auto out = synthesizer.value()->synthesize(window, project_.synthesis, level, want_sources);
-    if (!out || !hasExtentEdit()) return out;
-    auto edit = extentEdit();
-    if (!edit) return edit.status();
-    const PixelWindow e = extent();
-    Heightfield& h = out->heights;
-    if (level == 0) {
-        // The shaped heights themselves: plain + (shaped - plain) can be an ulp off, and frozen and
-        // pasted pixels must stay bit-identical.
-        for (int y = 0; y < h.height; ++y)
-            for (int x = 0; x < h.width; ++x) {
-                const int64_t gx = window.x + x - e.x, gy = window.y + y - e.y;
-                if (gx >= 0 && gy >= 0 && gx < e.width && gy < e.height)
-                    h.at(x, y) = shaped_[static_cast<size_t>(gy) * e.width + gx];
-            }
-        return out;
+    const project::ExtentEdit* edit = nullptr;
+    if (impl_->hasExtentEdit()) {
+        auto e = impl_->extentEdit();
+        if (!e) return e.status();
+        edit = e.value();
     }
-    // Coarser levels add the edit, box-averaged over the 2^level x 2^level block of extent pixels of
-    // each sample.
-    const int64_t block = int64_t(1) << level;
-    for (int y = 0; y < h.height; ++y) {
-        for (int x = 0; x < h.width; ++x) {
-            const int64_t gx0 = (window.x + x) * block - e.x, gy0 = (window.y + y) * block - e.y;
-            if (gx0 + block <= 0 || gy0 + block <= 0 || gx0 >= e.width || gy0 >= e.height) continue;
-            double sum = 0.0;
-            for (int64_t by = std::max<int64_t>(0, gy0); by < std::min<int64_t>(e.height, gy0 + block); ++by)
-                for (int64_t bx = std::max<int64_t>(0, gx0); bx < std::min<int64_t>(e.width, gx0 + block); ++bx)
-                    sum += (*edit.value())[static_cast<size_t>(by) * e.width + bx];
-            h.at(x, y) += static_cast<float>(sum / static_cast<double>(block * block));
-        }
-    }
-    return out;
+    return impl_->world->synthesize(window, level, want_sources, edit);
 }
 
 Result<Heightfield> Terrain::heights(const PixelWindow& window, int level) {
     auto out = synthesize(window, level, false);
     if (!out) return out.status();
     return std::move(out->heights);
+}
+
+Result<std::vector<double>> Terrain::heightsAt(const std::vector<std::array<double, 2>>& points) {
+    const project::ExtentEdit* edit = nullptr;
+    if (impl_->hasExtentEdit()) {
+        auto e = impl_->extentEdit();
+        if (!e) return e.status();
+        edit = e.value();
+    }
+    const GridFrame frame{database().meters_per_pixel};
+    std::vector<double> out;
+    out.reserve(points.size());
+    for (const auto& p : points) {
+        auto h = impl_->world->heightAt(frame.pixelX(p[0]), frame.pixelY(p[1]), edit);
+        if (!h) return h.status();
+        out.push_back(h.value());
+    }
+    return out;
+}
+
+Result<double> Terrain::heightAt(double world_x, double world_y) {
+    auto h = heightsAt({{world_x, world_y}});
+    if (!h) return h.status();
+    return h->front();
 }
 
 }  // namespace terrasynth

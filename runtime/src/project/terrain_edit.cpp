@@ -1,8 +1,7 @@
 // Coherent re-synthesis of a project as an edit of another (Gain et al. 2015 s5.3), for the CLI and
-// scripts: the editor's IncrementalTerrain, driven by the difference between two projects.
-#include <cmath>
-
-#include "terrasynth/incremental.h"
+// scripts: an edit session opened on the previous version, given the new constraints (and layers)
+// as one edit.
+#include "terrasynth/edit_session.h"
 #include "terrasynth/terrain.h"
 
 namespace terrasynth {
@@ -17,52 +16,33 @@ Status sameSettings(const Project& a, const Project& b, const ExemplarDatabase& 
         p.coarsest_level != q.coarsest_level || p.first_constrained_level != q.first_constrained_level ||
         a.hold_point_heights != b.hold_point_heights)
         return Status::error("the projects' synthesis settings differ (seed, jitter, passes, levels, hold_point_heights)");
-    auto unsupported = [](const Project& p) {
-        const auto& c = p.synthesis.constraints;
-        return p.hasLayers() || (c && !c->pastes.empty());
-    };
-    if (unsupported(a) || unsupported(b)) return Status::error("pastes and layers are not supported in a coherent edit");
     return Status::ok();
 }
 
 }  // namespace
 
 Result<Heightfield> Terrain::heightsAfterEditOf(Terrain& previous, PixelWindow* changed, Heightfield* before_heights) {
-    Status s = sameSettings(previous.project_, project_, *previous.db_, *db_);
-    if (!s) return s.withContext(project_.path + " as an edit of " + previous.project_.path);
-    auto synthesizer = synthesizerForThisThread();
-    if (!synthesizer) return synthesizer.status();
-    const auto& before = previous.project_.synthesis.constraints;
-    // The previous terrain as Terrain::heights() makes it: with a freeze brush, frozen pixels keep
-    // the terrain of the seed alone and the constraints shape the rest coherently.
-    const bool frozen_before = before && !before->freeze.empty();
-    SynthesisParams start = previous.project_.synthesis;
-    if (frozen_before) start.constraints.reset();
-    auto incremental = IncrementalTerrain::create(*synthesizer.value(), extent(), start);
-    if (!incremental) return incremental.status();
-    incremental->holdPointHeights(project_.hold_point_heights);
-    if (frozen_before) {
-        incremental->freeze(before->freeze);
-        if (before->shapesTerrain()) {
-            auto shaping = std::make_shared<SynthesisConstraints>(*before);
-            shaping->freeze = TypePaint();
-            s = incremental->update(shaping, extent());
-            if (!s) return s.withContext(previous.project_.path);
-        }
+    const Project& next = project();
+    const std::string context = next.path + " as an edit of " + previous.project().path;
+    if (Status s = sameSettings(previous.project(), next, previous.database(), database()); !s) return s.withContext(context);
+    EditSessionOptions options;
+    options.preloaded_database = previous.databasePtr();
+    auto session = EditSession::fromProject(previous.project(), options);
+    if (!session) return session.status();
+    if (before_heights) *before_heights = session.value()->heights();
+    const auto& constraints = next.synthesis.constraints;
+    auto edited = session.value()->setConstraints(constraints ? *constraints : SynthesisConstraints());
+    if (!edited) return edited.status().withContext(context);
+    PixelWindow moved = edited.value();
+    auto stack = parseLayerStack(next.layers_json, next.folder());
+    if (!stack) return stack.status().withContext(next.path);
+    if (layerStackToJson(*stack) != layerStackToJson(session.value()->layers())) {
+        auto layered = session.value()->setLayers(std::move(stack.value()));
+        if (!layered) return layered.status().withContext(context);
+        moved = uniteWindows(moved, layered.value());
     }
-    const auto& after = project_.synthesis.constraints;
-    if (after && !after->freeze.empty()) incremental->freeze(after->freeze);
-    // Points the edit left alone keep the lift they had, so only edited points count as changed.
-    auto next = std::make_shared<SynthesisConstraints>(after ? *after : SynthesisConstraints());
-    next->freeze = TypePaint();
-    if (const auto& current = incremental->params().constraints)
-        for (PointConstraint& p : next->points)
-            for (const PointConstraint& q : current->points)
-                if (p.samePlacement(q)) p.lift_m = q.lift_m;
-    if (before_heights) *before_heights = incremental->heights();
-    s = incremental->applyEdit(next, changed);
-    if (!s) return s.withContext(project_.path);
-    return incremental->heights();
+    if (changed) *changed = moved;
+    return session.value()->heights();
 }
 
 }  // namespace terrasynth

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "synth/constraints_json.h"
+
 #include "core/json_reader.h"
 #include "core/paths.h"
 #include "terrasynth/constraints.h"
@@ -107,19 +109,18 @@ Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, in
     return Status::ok();
 }
 
-// An 8-bit gray mask PNG of the project's size, `field` naming it in errors.
-Result<Image8> readExtentMask(const json& name, const std::string& field, const std::string& base_dir, int w, int h) {
+// An 8-bit gray mask of the project's size, `field` naming it in errors.
+Result<Image8> readExtentMask(const json& name, const std::string& field, const synth::MaskReader& masks, int w, int h) {
     if (!name.is_string()) return Status::error(field + ": must be a PNG path");
-    const std::string path = detail::resolveRelative(base_dir, name.get<std::string>());
-    auto image = readPng8(path);
+    auto image = masks(name.get<std::string>());
     if (!image) return image.status().withContext(field);
     if (image->width != w || image->height != h || image->channels != 1)
-        return Status::error(field + ": " + path + " must be 8-bit gray of the project size " + std::to_string(w) +
-                             "x" + std::to_string(h));
+        return Status::error(field + ": " + name.get<std::string>() + " must be 8-bit gray of the project size " +
+                             std::to_string(w) + "x" + std::to_string(h));
     return image;
 }
 
-Status parseTypes(const json& types, const std::string& base_dir, const ExemplarDatabase& db, SynthesisConstraints& out,
+Status parseTypes(const json& types, const synth::MaskReader& masks, const ExemplarDatabase& db, SynthesisConstraints& out,
                   int64_t ox, int64_t oy, int w, int h) {
     JsonReader r(types, "constraints.types");
     if (!r.ok()) return r.status();
@@ -131,7 +132,7 @@ Status parseTypes(const json& types, const std::string& base_dir, const Exemplar
     const json* strokes = r.child("strokes");
     if (Status s = r.finish(); !s) return s;
     if (mask) {
-        auto image = readExtentMask(*mask, "constraints.types.mask", base_dir, w, h);
+        auto image = readExtentMask(*mask, "constraints.types.mask", masks, w, h);
         if (!image) return image.status();
         if (!palette || !palette->is_object())
             return Status::error("constraints.types.palette: must map mask values to type names");
@@ -165,7 +166,7 @@ Status parseTypes(const json& types, const std::string& base_dir, const Exemplar
 }
 
 // The freeze brush: an 8-bit mask PNG of the project's size (non-zero = frozen) and/or strokes.
-Status parseFreeze(const json& freeze, const std::string& base_dir, SynthesisConstraints& out, int64_t ox, int64_t oy,
+Status parseFreeze(const json& freeze, const synth::MaskReader& masks, SynthesisConstraints& out, int64_t ox, int64_t oy,
                    int w, int h) {
     JsonReader r(freeze, "constraints.freeze");
     if (!r.ok()) return r.status();
@@ -176,7 +177,7 @@ Status parseFreeze(const json& freeze, const std::string& base_dir, SynthesisCon
     const json* strokes = r.child("strokes");
     if (Status s = r.finish(); !s) return s;
     if (image_name) {
-        auto image = readExtentMask(*image_name, "constraints.freeze.mask", base_dir, w, h);
+        auto image = readExtentMask(*image_name, "constraints.freeze.mask", masks, w, h);
         if (!image) return image.status();
         for (size_t i = 0; i < mask.types.size(); ++i) mask.types[i] = image->samples[i] ? 1 : 0;
     }
@@ -228,19 +229,18 @@ json pointsJson(const std::vector<std::pair<double, double>>& points, double ox,
     return list;
 }
 
-// `paint` resampled onto the extent (nearest; pixels outside it read `outside`).
-std::vector<uint8_t> onExtent(const TypePaint& paint, int64_t ox, int64_t oy, int w, int h, uint8_t outside) {
-    std::vector<uint8_t> out(static_cast<size_t>(w) * h, outside);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const int64_t px = ox + x - paint.x, py = oy + y - paint.y;
+}  // namespace
+
+std::vector<uint8_t> synth::paintOnWindow(const TypePaint& paint, const PixelWindow& window, uint8_t outside) {
+    std::vector<uint8_t> out(static_cast<size_t>(window.width) * window.height, outside);
+    for (int y = 0; y < window.height; ++y)
+        for (int x = 0; x < window.width; ++x) {
+            const int64_t px = window.x + x - paint.x, py = window.y + y - paint.y;
             if (px >= 0 && py >= 0 && px < paint.width && py < paint.height)
-                out[static_cast<size_t>(y) * w + x] = paint.types[static_cast<size_t>(py) * paint.width + px];
+                out[static_cast<size_t>(y) * window.width + x] = paint.types[static_cast<size_t>(py) * paint.width + px];
         }
     return out;
 }
-
-}  // namespace
 
 void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius_px, uint8_t value) {
     const double r = radius_px;
@@ -266,11 +266,28 @@ void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>&
     }
 }
 
+synth::MaskReader synth::masksFromFolder(const std::string& base_dir) {
+    return [base_dir](const std::string& name) { return readPng8(detail::resolveRelative(base_dir, name)); };
+}
+
+synth::MaskReader synth::masksFrom(const ConstraintsJson& written) {
+    return [&written](const std::string& name) -> Result<Image8> {
+        for (const ConstraintsJson::Mask& m : written.masks)
+            if (detail::baseName(m.file) == name) return Image8{m.width, m.height, 1, m.pixels};
+        return Status::error(name + ": no such mask");
+    };
+}
+
 Result<SynthesisConstraints> parseConstraints(const std::string& text, const std::string& base_dir, const ExemplarDatabase& db,
                                               int64_t ox, int64_t oy, int w, int h) {
-    SynthesisConstraints out;
     const json c = json::parse(text, nullptr, /*allow_exceptions=*/false);
     if (c.is_discarded()) return Status::error("constraints: malformed JSON");
+    return synth::parseConstraintsJson(c, synth::masksFromFolder(base_dir), db, ox, oy, w, h);
+}
+
+Result<SynthesisConstraints> synth::parseConstraintsJson(const json& c, const MaskReader& masks, const ExemplarDatabase& db,
+                                                         int64_t ox, int64_t oy, int w, int h) {
+    SynthesisConstraints out;
     if (c.is_null()) return out;
     if (!c.is_object()) return Status::error("constraints: must be an object");
     for (auto it = c.begin(); it != c.end(); ++it)
@@ -282,9 +299,9 @@ Result<SynthesisConstraints> parseConstraints(const std::string& text, const std
     if (auto curves = c.find("curves"); curves != c.end())
         if (Status s = parseCurves(*curves, out, ox, oy); !s) return s;
     if (auto t = c.find("types"); t != c.end())
-        if (Status s = parseTypes(*t, base_dir, db, out, ox, oy, w, h); !s) return s;
+        if (Status s = parseTypes(*t, masks, db, out, ox, oy, w, h); !s) return s;
     if (auto f = c.find("freeze"); f != c.end())
-        if (Status s = parseFreeze(*f, base_dir, out, ox, oy, w, h); !s) return s;
+        if (Status s = parseFreeze(*f, masks, out, ox, oy, w, h); !s) return s;
     if (auto p = c.find("pastes"); p != c.end())
         if (Status s = parsePastes(*p, db, out, ox, oy); !s) return s;
     return out;
@@ -315,7 +332,7 @@ Result<ConstraintsJson> constraintsToJson(const SynthesisConstraints& c, const E
     }
     if (!c.types.empty()) {
         // Mask value = type id + 1 (0 = unpainted), named through the palette.
-        std::vector<uint8_t> pixels = onExtent(c.types, ox, oy, w, h, TypePaint::kUnpainted);
+        std::vector<uint8_t> pixels = synth::paintOnWindow(c.types, {ox, oy, w, h}, TypePaint::kUnpainted);
         json palette = json::object();
         for (uint8_t& v : pixels) {
             if (v == TypePaint::kUnpainted) {
@@ -331,7 +348,7 @@ Result<ConstraintsJson> constraintsToJson(const SynthesisConstraints& c, const E
         j["types"] = {{"mask", detail::baseName(out.masks.back().file)}, {"palette", palette}};
     }
     if (!c.freeze.empty()) {
-        std::vector<uint8_t> pixels = onExtent(c.freeze, ox, oy, w, h, 0);
+        std::vector<uint8_t> pixels = synth::paintOnWindow(c.freeze, {ox, oy, w, h}, 0);
         for (uint8_t& v : pixels) v = v != 0 && v != TypePaint::kUnpainted ? 255 : 0;
         out.masks.push_back({mask_stem + ".freeze.png", w, h, std::move(pixels)});
         j["freeze"] = {{"mask", detail::baseName(out.masks.back().file)}};

@@ -411,6 +411,11 @@ IncrementalTerrain::Journal& IncrementalTerrain::Journal::operator=(Journal&&) n
 IncrementalTerrain::Journal::~Journal() = default;
 bool IncrementalTerrain::Journal::empty() const { return !tiles_ || tiles_->empty(); }
 size_t IncrementalTerrain::Journal::bytes() const { return tiles_ ? tiles_->bytes() : 0; }
+void IncrementalTerrain::Journal::absorb(Journal&& later) {
+    if (!later.tiles_) return;
+    if (!tiles_) tiles_ = std::move(later.tiles_);
+    else tiles_->absorb(std::move(*later.tiles_));
+}
 
 void IncrementalTerrain::beginJournal() {
     if (!journal_) journal_ = std::make_unique<detail::TileJournal>();
