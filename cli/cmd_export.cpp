@@ -43,7 +43,9 @@ Result<Input> openInput(const ExportArgs& a) {
         in.heights = heightSourceFromField(std::move(exemplar->field));
         return in;
     }
-    auto terrain = Terrain::open(a.project);
+    TerrainOptions options;
+    options.on_warning = warn;
+    auto terrain = Terrain::open(a.project, options);
     if (!terrain) return terrain.status();
     std::shared_ptr<Terrain> t = *terrain;
     in.extent = t->extent();

@@ -142,6 +142,7 @@ void runSynth(const SynthArgs& args) {
     if (!loaded) return fail("synth", loaded.message());
     const Project& project = loaded.value();
     TerrainOptions options;
+    options.on_warning = warn;
     if (args.backend == "reference") options.synthesizer.backend = SynthesisBackend::Reference;
     else if (args.backend != "opencl") return fail("synth", "--backend must be opencl or reference");
     const auto start = std::chrono::steady_clock::now();

@@ -21,5 +21,7 @@ int& exitCode();
 
 // Prints "terrasynth <command>: <message>" to stderr and sets the exit code to 1.
 void fail(const std::string& command, const std::string& message);
+// Prints "terrasynth: warning: <message>" to stderr (recoverable surprises, e.g. a stale sidecar).
+void warn(const std::string& message);
 
 }  // namespace terrasynth::cli

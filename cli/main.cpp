@@ -31,6 +31,8 @@ void fail(const std::string& command, const std::string& message) {
     exitCode() = 1;
 }
 
+void warn(const std::string& message) { std::fprintf(stderr, "terrasynth: warning: %s\n", message.c_str()); }
+
 }  // namespace terrasynth::cli
 
 int main(int argc, char** argv) {

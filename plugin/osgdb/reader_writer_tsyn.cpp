@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include <osg/Notify>
 #include <osgDB/FileNameUtils>
 #include <osgDB/FileUtils>
 #include <osgDB/Registry>
@@ -89,6 +90,7 @@ private:
                                            std::min(opts.node.max_level, project->database_levels - 1));
         TerrainOptions terrain_options;
         terrain_options.synthesizer = opts.synthesizer;
+        terrain_options.on_warning = [](const std::string& warning) { OSG_WARN << "terrasynth: " << warning << std::endl; };
         auto terrain = Terrain::fromProject(*project, terrain_options);
         if (!terrain) return ReadResult(path + ": " + terrain.message());
         std::shared_ptr<Terrain> shared = *terrain;

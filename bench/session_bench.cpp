@@ -1,0 +1,107 @@
+// The edit session on the default 1024^2 project: a point drag step, its undo, heightAt, and the
+// memory 100 undo steps hold. Targets (issue): drag step <= 40 ms median, undo <= 10 ms,
+// heightAt <= 1 us where the pixel is resident.
+// Run: build/bin/session_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <memory>
+
+#include "terrasynth/edit_session.h"
+
+using namespace terrasynth;
+
+namespace {
+
+// One session shared by the benchmarks (opening synthesizes the 1024^2 extent once).
+EditSession* session(benchmark::State& state) {
+    static std::unique_ptr<EditSession> shared = [] {
+        ::setenv("POCL_CACHE_DIR", TERRASYNTH_BENCH_POCL_CACHE, 0);
+        auto project = loadProject(std::string(TERRASYNTH_BENCH_DATA_DIR) + "/default.tsyn");
+        if (!project) return std::unique_ptr<EditSession>();
+        project->database = std::string(TERRASYNTH_BENCH_POCL_CACHE) + "/../bench_default.tsdb";
+        auto s = EditSession::fromProject(std::move(project.value()));
+        return s ? std::move(s.value()) : std::unique_ptr<EditSession>();
+    }();
+    if (!shared) state.SkipWithError("cannot open data/default.tsyn");
+    return shared.get();
+}
+
+EditId dragged(EditSession& s) {
+    static EditId id = 0;
+    if (id) return id;
+    PointConstraint p;
+    p.x = 512, p.y = 512, p.height_m = s.heights().at(512, 512) + 300.0f, p.radius_px = 64;
+    if (s.addPoint(p, &id)) return id;
+    return 0;
+}
+
+}  // namespace
+
+// A drag step: the point moves a few pixels (what one mouse event between frames does).
+static void BM_PointDragStep(benchmark::State& state) {
+    EditSession* s = session(state);
+    if (!s) return;
+    const EditId id = dragged(*s);
+    int step = 0;
+    s->beginGesture();
+    for (auto _ : state) {
+        const double dx = 3.0 * (step % 8), dy = 2.0 * ((step / 8) % 4);
+        auto r = s->movePoint(id, 512 + dx, 512 + dy);
+        if (!r) state.SkipWithError(r.message().c_str());
+        ++step;
+    }
+    s->endGesture();
+}
+BENCHMARK(BM_PointDragStep)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Undo of one drag step (the redo that re-applies it is not timed).
+static void BM_UndoDragStep(benchmark::State& state) {
+    EditSession* s = session(state);
+    if (!s) return;
+    const EditId id = dragged(*s);
+    int step = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        auto moved = s->movePoint(id, 512 + 4.0 * (step++ % 5), 512);
+        if (!moved) state.SkipWithError(moved.message().c_str());
+        state.ResumeTiming();
+        auto r = s->undo();
+        if (!r) state.SkipWithError(r.message().c_str());
+    }
+}
+BENCHMARK(BM_UndoDragStep)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// heightAt inside the extent (resident): the game's collision and the editor's picks.
+static void BM_HeightAtResident(benchmark::State& state) {
+    EditSession* s = session(state);
+    if (!s) return;
+    const GridFrame f = s->frame();
+    double x = 100.25, sum = 0.0;
+    for (auto _ : state) {
+        auto h = s->heightAt(f.worldX(x), f.worldY(300.5));
+        sum += *h;
+        x = x < 900.0 ? x + 0.37 : 100.25;
+    }
+    benchmark::DoNotOptimize(sum);
+}
+BENCHMARK(BM_HeightAtResident)->Unit(benchmark::kNanosecond);
+
+// Memory: 100 undo steps of point edits (radius 64, spread over the extent), per extent pixel.
+static void BM_UndoMemory100Steps(benchmark::State& state) {
+    EditSession* s = session(state);
+    if (!s) return;
+    for (auto _ : state) {
+        for (int i = 0; i < 100; ++i) {
+            PointConstraint p;
+            p.x = 96 + 83 * (i % 10), p.y = 96 + 83 * (i / 10), p.height_m = s->heights().at(512, 512), p.radius_px = 64;
+            auto r = s->addPoint(p);
+            if (!r) state.SkipWithError(r.message().c_str());
+        }
+    }
+    const PixelWindow e = s->extent();
+    state.counters["undo_bytes_per_pixel"] = static_cast<double>(s->undoBytes()) / (static_cast<double>(e.width) * e.height);
+}
+BENCHMARK(BM_UndoMemory100Steps)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+BENCHMARK_MAIN();

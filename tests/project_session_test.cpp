@@ -1,0 +1,404 @@
+// EditSession (issue: one runtime object for the terrain being edited): random scripted sessions
+// with exact undo and redo, saving and reopening with the edited-heights sidecar, the height source
+// against the session, concurrent tile reads during edits, and bad input.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <thread>
+
+#include "terrasynth/edit_session.h"
+#include "terrasynth/heightfield_io.h"
+#include "terrasynth/terrain.h"
+#include "test_support.h"
+
+namespace terrasynth {
+namespace {
+
+constexpr int kSize = 192;
+constexpr int64_t kOriginX = 1000, kOriginY = -640;
+
+std::string writeProject(const std::string& dir, uint32_t seed = 7, const std::string& constraints = "{}",
+                         const std::string& layers = "[]") {
+    if (!test::defaultDatabase()) return "";
+    Project p;
+    p.database = test::defaultDatabasePath();
+    p.width = p.height = kSize;
+    p.origin_x = kOriginX, p.origin_y = kOriginY;
+    p.synthesis.seed = seed;
+    p.constraints_json = constraints;
+    p.layers_json = layers;
+    const std::string path = dir + "/start.tsyn";
+    EXPECT_TRUE(saveProject(p, path));
+    return path;
+}
+
+std::unique_ptr<EditSession> openSession(const std::string& path, std::vector<std::string>* warnings = nullptr,
+                                         SynthesisBackend backend = SynthesisBackend::OpenCL) {
+    EditSessionOptions options;
+    options.synthesizer.backend = backend;
+    if (warnings) options.on_warning = [warnings](const std::string& w) { warnings->push_back(w); };
+    auto session = EditSession::open(path, options);
+    EXPECT_TRUE(session) << session.message();
+    return session ? std::move(session.value()) : nullptr;
+}
+
+// A random site well inside the extent.
+std::pair<double, double> site(std::mt19937& rng, int margin = 24) {
+    std::uniform_real_distribution<double> u(margin, kSize - margin);
+    return {kOriginX + std::round(u(rng)), kOriginY + std::round(u(rng))};
+}
+
+// One random edit of kind `kind` (0..19); returns its name. Edits that the session rightly refuses
+// (none are expected here) fail the test.
+std::string randomEdit(EditSession& s, std::mt19937& rng, int kind) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const float mean = [&] {
+        double sum = 0;
+        for (float h : s.heights().heights) sum += h;
+        return static_cast<float>(sum / s.heights().heights.size());
+    }();
+    auto pick = [&](const std::vector<EditId>& ids) { return ids[static_cast<size_t>(unit(rng) * ids.size()) % ids.size()]; };
+    auto check = [&](const Result<PixelWindow>& r, const char* name) {
+        EXPECT_TRUE(r) << name << ": " << r.message();
+        return std::string(name);
+    };
+    const auto [x, y] = site(rng);
+    if (kind == 0 || (kind < 4 && s.pointIds().empty())) {
+        PointConstraint p;
+        p.x = x, p.y = y, p.height_m = mean + static_cast<float>(600 * (unit(rng) - 0.5));
+        p.slope_direction_deg = static_cast<float>(360 * unit(rng)), p.slope_angle_deg = static_cast<float>(10 * unit(rng));
+        p.radius_px = static_cast<float>(16 + 30 * unit(rng));
+        return check(s.addPoint(p), "addPoint");
+    }
+    if (kind == 1) return check(s.movePoint(pick(s.pointIds()), x, y), "movePoint");
+    if (kind == 2) {
+        PointConstraint p = *s.point(pick(s.pointIds()));
+        p.height_m += static_cast<float>(200 * (unit(rng) - 0.5));
+        p.radius_px = static_cast<float>(16 + 30 * unit(rng));
+        return check(s.setPoint(pick(s.pointIds()), p), "setPoint");
+    }
+    if (kind == 3) return check(s.removePoint(pick(s.pointIds())), "removePoint");
+    if (kind == 4 || (kind < 10 && s.curveIds().empty())) {
+        CurveConstraint c;
+        const auto [x2, y2] = site(rng);
+        c.course = {{x, y}, {(x + x2) / 2 + 10, (y + y2) / 2 - 10}, {x2, y2}};
+        c.spline = unit(rng) < 0.5;
+        CurveWidget a, b;
+        a.t = 0.0, a.height_m = mean - 100, a.left_gradient = 0.3f, a.right_gradient = -0.2f;
+        b.t = 1.0, b.height_m = mean + 100;
+        c.widgets = {a, b};
+        return check(s.addCurve(c), "addCurve");
+    }
+    const EditId curve = kind < 10 ? pick(s.curveIds()) : 0;
+    if (kind == 5) return check(s.moveCoursePoint(curve, 1, x, y), "moveCoursePoint");
+    if (kind == 6) {
+        CurveWidget w;
+        w.t = unit(rng), w.height_m = mean + static_cast<float>(300 * (unit(rng) - 0.5)), w.left_reach_px = 20;
+        return check(s.addWidget(curve, w), "addWidget");
+    }
+    if (kind == 7) return check(s.moveWidget(curve, 0, 0.1 * unit(rng)), "moveWidget");
+    if (kind == 8) {
+        CurveWidget w = s.curve(curve)->widgets.back();
+        w.height_m += 150;
+        w.right_gradient = -0.5f;
+        return check(s.setWidget(curve, static_cast<int>(s.curve(curve)->widgets.size()) - 1, w), "setWidget");
+    }
+    if (kind == 9) return check(s.removeCurve(curve), "removeCurve");
+    const auto [x2, y2] = site(rng);
+    if (kind == 10) {
+        const auto& names = s.database().type_names;
+        return check(s.paintTypes({{x, y}, {x2, y2}}, 10, names[static_cast<size_t>(unit(rng) * names.size()) % names.size()]),
+                     "paintTypes");
+    }
+    if (kind == 11) return check(s.eraseTypes({{x, y}, {x2, y2}}, 8), "eraseTypes");
+    if (kind == 12) return check(s.freeze({{x, y}, {x2, y2}}, 6), "freeze");
+    if (kind == 13) return check(s.unfreeze({{x, y}}, 20), "unfreeze");
+    if (kind == 14 || (kind == 15 && s.pasteIds().empty())) {
+        PasteConstraint p;
+        const bool exemplar = unit(rng) < 0.5;
+        p.exemplar = exemplar ? 1 : -1;
+        const double sx = exemplar ? 400 : x, sy = exemplar ? 400 : y;
+        p.source = {{sx, sy}, {sx + 20, sy}, {sx + 20, sy + 16}, {sx, sy + 16}};
+        p.dx = (x2 - 10) - sx, p.dy = (y2 - 8) - sy;
+        p.height_offset_m = static_cast<float>(100 * (unit(rng) - 0.5));
+        return check(s.addPaste(p), "addPaste");
+    }
+    if (kind == 15) return check(s.removePaste(pick(s.pasteIds())), "removePaste");
+    if (kind == 16 || (kind < 19 && s.layers().layers.empty())) {
+        EditLayer layer;
+        PeakParams peak;
+        peak.center_x = x - kOriginX, peak.center_y = y - kOriginY, peak.height_m = 300, peak.spread_px = 12;
+        layer.tool = peak;
+        layer.weights = defaultWeights(layer.tool);
+        return check(s.addLayer(layer), "addLayer");
+    }
+    if (kind == 17) return check(s.setLayerWeights(0, BandWeights{1.0f, static_cast<float>(2 * unit(rng)), 1.0f}), "setLayerWeights");
+    if (kind == 18) return check(s.setLayerVisible(0, !s.layers().layers[0].visible), "setLayerVisible");
+    return check(s.reseed(static_cast<uint32_t>(1 + unit(rng) * 1000)), "reseed");
+}
+
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+Heightfield extentOf(Terrain& t) {
+    auto h = t.heights(t.extent(), 0);
+    EXPECT_TRUE(h) << h.message();
+    return h ? *h : Heightfield();
+}
+
+TEST(EditSession, FortyRandomEditsUndoRedoSaveReopen) {
+    const std::string dir = test::scratchDir("session_script");
+    const std::string start_path = writeProject(dir);
+    ASSERT_FALSE(start_path.empty());
+    auto session = openSession(start_path);
+    ASSERT_TRUE(session);
+    // Opened without a sidecar, the session is exactly what Terrain makes of the project.
+    auto fresh = Terrain::open(start_path);
+    ASSERT_TRUE(fresh) << fresh.message();
+    ASSERT_TRUE(sameBits(session->heights().heights, extentOf(**fresh).heights));
+
+    std::mt19937 rng(20261129);
+    std::vector<std::vector<float>> after{session->heights().heights};
+    std::vector<std::string> names;
+    for (int i = 0; i < 40; ++i) {
+        const int kind = i < 20 ? i : static_cast<int>(rng() % 20);
+        if (i == 30) {
+            // A drag of 8 intermediate positions is one step.
+            ASSERT_FALSE(session->pointIds().empty());
+            const EditId id = session->pointIds().front();
+            session->beginGesture();
+            for (int k = 0; k < 8; ++k) ASSERT_TRUE(session->movePoint(id, session->point(id)->x + 2, session->point(id)->y + 1));
+            session->endGesture();
+            names.push_back("drag");
+        } else {
+            names.push_back(randomEdit(*session, rng, kind));
+        }
+        after.push_back(session->heights().heights);
+    }
+    const uint64_t edits = session->editCount();
+    std::printf("undo memory after 40 edits of a %dx%d extent: %.1f bytes per pixel\n", kSize, kSize,
+                static_cast<double>(session->undoBytes()) / (kSize * kSize));
+    for (int i = 40; i > 0; --i) {
+        ASSERT_TRUE(session->canUndo());
+        auto undone = session->undo();
+        ASSERT_TRUE(undone) << undone.message();
+        ASSERT_TRUE(sameBits(session->heights().heights, after[i - 1])) << "undo of edit " << i - 1 << " (" << names[i - 1] << ")";
+    }
+    EXPECT_FALSE(session->canUndo());
+    for (int i = 1; i <= 40; ++i) {
+        auto redone = session->redo();
+        ASSERT_TRUE(redone) << redone.message();
+        ASSERT_TRUE(sameBits(session->heights().heights, after[i])) << "redo of edit " << i - 1 << " (" << names[i - 1] << ")";
+    }
+    EXPECT_GT(session->editCount(), edits);
+
+    // Saved and reopened, the heights are what the designer saw, through Terrain and a new session.
+    const std::string saved = dir + "/edited.tsyn";
+    ASSERT_TRUE(session->save(saved));
+    EXPECT_FALSE(session->isDirty());
+    auto reopened = Terrain::open(saved);
+    ASSERT_TRUE(reopened) << reopened.message();
+    EXPECT_TRUE(reopened.value()->usesEditedHeights());
+    EXPECT_TRUE(reopened.value()->warnings().empty());
+    EXPECT_TRUE(sameBits(extentOf(**reopened).heights, after.back()));
+    auto again = openSession(saved);
+    ASSERT_TRUE(again);
+    EXPECT_TRUE(sameBits(again->heights().heights, after.back()));
+    // The reopened session continues exactly as the first would (same state, same next edit).
+    PointConstraint p;
+    p.x = kOriginX + 96, p.y = kOriginY + 96, p.height_m = 2500, p.radius_px = 30;
+    ASSERT_TRUE(session->addPoint(p));
+    ASSERT_TRUE(again->addPoint(p));
+    EXPECT_TRUE(sameBits(again->heights().heights, session->heights().heights));
+
+    // Without its sidecar the project is synthesized afresh, with a warning.
+    ASSERT_EQ(::unlink((dir + "/edited.heights").c_str()), 0);
+    auto lost = Terrain::open(saved);
+    ASSERT_TRUE(lost) << lost.message();
+    ASSERT_EQ(lost.value()->warnings().size(), 1u);
+    EXPECT_NE(lost.value()->warnings()[0].find("edited.heights"), std::string::npos) << lost.value()->warnings()[0];
+    Project without = lost.value()->project();
+    without.edited_heights.clear();
+    auto afresh = Terrain::fromProject(without);
+    ASSERT_TRUE(afresh) << afresh.message();
+    EXPECT_TRUE(sameBits(extentOf(**lost).heights, extentOf(**afresh).heights));
+}
+
+TEST(EditSession, HeightSourceIsTheSessionAndTheWorldAroundIt) {
+    const std::string dir = test::scratchDir("session_source");
+    auto session = openSession(writeProject(dir, 11));
+    ASSERT_TRUE(session);
+    PointConstraint p;
+    p.x = kOriginX + 60, p.y = kOriginY + 70, p.height_m = 3000, p.radius_px = 40;
+    ASSERT_TRUE(session->addPoint(p));
+    ASSERT_TRUE(session->paintTypes({{kOriginX + 120.0, kOriginY + 120.0}}, 20, session->database().type_names[0]));
+    const HeightSource source = session->heightSource();
+    const PixelWindow e = session->extent();
+    // Level 0: the session's heights inside; windows overlapping the extent's edge agree bit for bit.
+    auto inside = source(e, 0);
+    ASSERT_TRUE(inside) << inside.message();
+    EXPECT_TRUE(sameBits(inside->heights, session->heights().heights));
+    for (int level = 0; level <= 3; ++level) {
+        const PixelWindow big{(e.x >> level) - 20, (e.y >> level) - 20, (e.width >> level) + 40, (e.height >> level) + 40};
+        const PixelWindow small{big.x + 13, big.y + 7, 37, 29};
+        auto a = source(big, level), b = source(small, level);
+        ASSERT_TRUE(a && b);
+        for (int y = 0; y < small.height; ++y)
+            for (int x = 0; x < small.width; ++x)
+                ASSERT_EQ(b->at(x, y), a->at(x + 13, y + 7)) << "level " << level << " at " << x << "," << y;
+    }
+    // heightAt: exact on samples, bilinear between them, also outside the extent.
+    const GridFrame f = session->frame();
+    auto at = session->heightAt(f.worldX(static_cast<double>(e.x + 5)), f.worldY(static_cast<double>(e.y + 9)));
+    ASSERT_TRUE(at);
+    EXPECT_EQ(static_cast<float>(*at), session->heights().at(5, 9));
+    auto mid = session->heightAt(f.worldX(e.x + 5.5), f.worldY(e.y + 9.0));
+    ASSERT_TRUE(mid);
+    EXPECT_NEAR(*mid, 0.5 * (session->heights().at(5, 9) + session->heights().at(6, 9)), 1e-3);
+    auto outside = session->heightAt(f.worldX(e.x - 500.0), f.worldY(e.y - 300.0));
+    ASSERT_TRUE(outside) << outside.message();
+    auto world = source({e.x - 500, e.y - 300, 1, 1}, 0);
+    ASSERT_TRUE(world);
+    EXPECT_EQ(static_cast<float>(*outside), world->at(0, 0));
+}
+
+TEST(EditSession, TilesReadOnTwoThreadsWhileEditsRun) {
+    // The C++ backend, so a ThreadSanitizer build (-DTERRASYNTH_SANITIZE=thread) sees every access.
+    const std::string dir = test::scratchDir("session_threads");
+    auto session = openSession(writeProject(dir, 5), nullptr, SynthesisBackend::Reference);
+    ASSERT_TRUE(session);
+    std::atomic<bool> stop{false};
+    std::atomic<int> reads{0}, failures{0};
+    auto reader = [&](int seed) {
+        std::mt19937 rng(seed);
+        while (!stop) {
+            const int level = static_cast<int>(rng() % 3);
+            const PixelWindow w{(kOriginX >> level) + static_cast<int>(rng() % 100) - 30,
+                                (kOriginY >> level) + static_cast<int>(rng() % 100) - 30, 48, 48};
+            auto h = session->heightSource()(w, level);
+            auto at = session->heightAt(session->frame().worldX(kOriginX + 50.5), session->frame().worldY(kOriginY + 60.5));
+            if (!h || !at || !std::isfinite(*at)) ++failures;
+            ++reads;
+        }
+    };
+    std::thread a(reader, 1), b(reader, 2);
+    std::mt19937 rng(9);
+    for (int i = 0; i < 12; ++i) randomEdit(*session, rng, i % 2 == 0 ? 0 : (i % 4 == 1 ? 1 : 10));
+    ASSERT_TRUE(session->undo());
+    ASSERT_TRUE(session->redo());
+    stop = true;
+    a.join();
+    b.join();
+    EXPECT_EQ(failures.load(), 0);
+    EXPECT_GT(reads.load(), 10);
+}
+
+TEST(EditSession, BadInputIsRefusedAndChangesNothing) {
+    const std::string dir = test::scratchDir("session_bad");
+    auto session = openSession(writeProject(dir, 3));
+    ASSERT_TRUE(session);
+    PointConstraint ok;
+    ok.x = kOriginX + 50, ok.y = kOriginY + 50, ok.height_m = 2000;
+    EditId point = 0, curve = 0;
+    ASSERT_TRUE(session->addPoint(ok, &point));
+    CurveConstraint c;
+    c.course = {{kOriginX + 20.0, kOriginY + 30.0}, {kOriginX + 150.0, kOriginY + 40.0}};
+    c.widgets = {CurveWidget{}};
+    c.widgets[0].height_m = 1500;
+    ASSERT_TRUE(session->addCurve(c, &curve));
+    const std::vector<float> heights = session->heights().heights;
+    const uint64_t count = session->editCount();
+    const std::string project_json = session->project().constraints_json;
+
+    auto refused = [&](const Result<PixelWindow>& r, const char* fragment) {
+        ASSERT_FALSE(r) << fragment;
+        EXPECT_NE(r.message().find(fragment), std::string::npos) << r.message();
+        EXPECT_TRUE(sameBits(session->heights().heights, heights)) << fragment;
+        EXPECT_EQ(session->editCount(), count) << fragment;
+        EXPECT_EQ(session->project().constraints_json, project_json) << fragment;
+    };
+    PointConstraint bad = ok;
+    bad.height_m = 50000;
+    refused(session->addPoint(bad), "point.height_m");
+    bad = ok, bad.slope_angle_deg = 85;
+    refused(session->setPoint(point, bad), "point.slope_angle_deg");
+    bad = ok, bad.radius_px = 0;
+    refused(session->addPoint(bad), "point.radius_px");
+    bad = ok, bad.x = std::nan("");
+    refused(session->addPoint(bad), "point.x");
+    refused(session->movePoint(point, 1e12, 0), "point.x");
+    refused(session->movePoint(point + 1000, 10, 10), "no such point");
+    refused(session->removePoint(999), "no such point");
+    refused(session->removeCurve(998), "no such curve");
+    refused(session->moveCoursePoint(curve, 7, 0, 0), "course point 7");
+    refused(session->moveWidget(curve, 3, 0.5), "widget 3");
+    refused(session->removeWidget(curve, 0), "at least one widget");
+    CurveWidget w;
+    w.left_gradient = 50;
+    refused(session->addWidget(curve, w), "left_gradient");
+    CurveConstraint one_point = c;
+    one_point.course.resize(1);
+    refused(session->setCurve(curve, one_point), "curve.course");
+    refused(session->paintTypes({{kOriginX + 10.0, kOriginY + 10.0}}, 5, "lava"), "type \"lava\"");
+    refused(session->paintTypes({}, 5, session->database().type_names[0]), "stroke");
+    refused(session->freeze({{kOriginX + 10.0, kOriginY + 10.0}}, -3), "stroke.radius_px");
+    PasteConstraint paste;
+    paste.exemplar = 0;
+    paste.source = {{0, 0}, {900, 0}, {900, 900}, {0, 900}};  // far beyond the exemplar
+    paste.dx = kOriginX, paste.dy = kOriginY;
+    refused(session->addPaste(paste), "leaves exemplar");
+    paste.exemplar = 40;
+    refused(session->addPaste(paste), "paste.exemplar");
+    refused(session->removePaste(5), "no such paste");
+    refused(session->setLayerWeights(3, BandWeights{}), "layer index 3");
+    refused(session->removeLayer(0), "layer index 0");
+    // Saving into a folder that does not exist: an error naming it, nothing written, still dirty.
+    EXPECT_TRUE(session->isDirty());
+    Status unwritable = session->save(dir + "/missing/edited.tsyn");
+    ASSERT_FALSE(unwritable);
+    EXPECT_NE(unwritable.message().find("missing/"), std::string::npos) << unwritable.message();
+    EXPECT_TRUE(session->isDirty());
+    EXPECT_NE(::access((dir + "/missing").c_str(), F_OK), 0);
+    EXPECT_FALSE(session->save(dir + "/edited.txt"));
+    // A good save still works after all that, and a second one is skipped when nothing changed.
+    ASSERT_TRUE(session->save(dir + "/edited.tsyn"));
+    bool wrote = true;
+    ASSERT_TRUE(session->saveIfDirty(dir + "/edited.tsyn", &wrote));
+    EXPECT_FALSE(wrote);
+}
+
+TEST(EditSession, ConstraintsFromAProjectRoundTripThroughTheSession) {
+    const std::string dir = test::scratchDir("session_project");
+    const std::string constraints = R"({"points": [{"x": 40, "y": 50, "height_m": 2600, "radius_px": 30}],
+        "types": {"strokes": [{"type": "alpine ranges", "radius_px": 12, "points": [[100, 100], [150, 120]]}]},
+        "freeze": {"strokes": [{"radius_px": 6, "points": [[20, 150], [60, 160]]}]},
+        "pastes": [{"exemplar": "orom_rockies", "source": [[400, 400], [430, 400], [430, 420], [400, 420]], "target": [110, 20]}]})";
+    const std::string layers = R"([{"type": "peak", "center": [90, 90], "height_m": 200, "spread_px": 10}])";
+    const std::string path = writeProject(dir, 13, constraints, layers);
+    auto session = openSession(path);
+    ASSERT_TRUE(session);
+    // The session starts from exactly what Terrain makes of the project (freeze, paste, layers).
+    auto terrain = Terrain::open(path);
+    ASSERT_TRUE(terrain) << terrain.message();
+    EXPECT_TRUE(sameBits(session->heights().heights, extentOf(**terrain).heights));
+    EXPECT_EQ(session->pointIds().size(), 1u);
+    EXPECT_EQ(session->pasteIds().size(), 1u);
+    EXPECT_EQ(session->layers().layers.size(), 1u);
+    // Saved without edits: the written project parses to the same constraints (painting as masks).
+    ASSERT_TRUE(session->save(dir + "/copy.tsyn"));
+    auto copy = Terrain::open(dir + "/copy.tsyn");
+    ASSERT_TRUE(copy) << copy.message();
+    const auto& a = *session->project().synthesis.constraints;
+    const auto& b = *copy.value()->project().synthesis.constraints;
+    EXPECT_EQ(a.points.size(), b.points.size());
+    EXPECT_EQ(a.types.types, b.types.types);
+    EXPECT_TRUE(sameBits(extentOf(**copy).heights, session->heights().heights));
+}
+
+}  // namespace
+}  // namespace terrasynth
