@@ -130,6 +130,7 @@ Failure parseOptions(const BakeArgs& a, BakeOptions* o) {
     // Everything but the terrain's own numbers, so shard and size errors come before the project opens.
     BakeOptions early = *o;
     early.max_source_level = 64;
+    early.type_names = {"any"};
     if (early.region.empty()) early.region = {0, 0, 2, 2};
     if (Status s = checkBakeOptions(early); !s) return badInput(s.message());
     return {};
