@@ -1,6 +1,6 @@
 // `terrasynth bake <project.tsyn> -o world/ [--region X,Y,W,H] [--tile 256] [--levels 4] [--quantize]
 //   [--tileset auto|explicit|implicit] [--heightmaps png|f32|tif] [--masks] [--shard I/N] [--threads N]
-//   [--progress auto|bar|lines|none]`
+//   [--progress auto|bar|lines|none] [--prepare]`
 // `terrasynth bake --merge world/`
 // A 3D Tiles 1.1 tileset of glTF tiles, baked whole or one shard at a time (docs/bake.md). Exit 2 for
 // bad input (options, project, output folder, a merge with tiles missing), 1 when baking fails.
@@ -28,7 +28,7 @@ struct BakeArgs {
     std::string project, output, merge, shard, tileset = "auto", heightmaps = "none", progress = "auto";
     std::vector<int64_t> region;
     int tile = 256, levels = 4, threads = 0;
-    bool quantize = false, masks = false;
+    bool quantize = false, masks = false, prepare = false;
 };
 
 // Exit code and message of a failed step.
@@ -156,9 +156,16 @@ Failure runBake(const BakeArgs& a) {
     options.source_id = projectId(a.project);
     if (Status s = checkBakeOptions(options); !s) return badInput(s.message());
     if (Status s = prepareBakeFolder(a.output, options); !s) return badInput(s.message());
+    if (a.prepare) {  // the database is built (or found) and the plan written: what every shard reads
+        const BakeCounts counts = countBakeTiles(options);
+        std::printf("prepared %s: %lld tiles in %lld units, %d levels of tree\n", a.output.c_str(), (long long)counts.tiles,
+                    (long long)counts.units, counts.depth);
+        return {};
+    }
 
     const bool sharded = !a.shard.empty();
-    const std::string label = "bake shard " + std::to_string(options.shard_index) + "/" + std::to_string(options.shard_count);
+    const std::string label =
+        sharded ? "bake shard " + std::to_string(options.shard_index) + "/" + std::to_string(options.shard_count) : "bake";
     auto printer = std::make_shared<ProgressPrinter>(label, a.progress);
     options.progress = [printer](const BakeProgress& p) { (*printer)(p); };
     const BakeSource source = [t, &options](const PixelWindow& w, int level, bool want_types) -> Result<BakeSamples> {
@@ -190,6 +197,7 @@ void addBakeCommand(CLI::App& app) {
     cmd->add_option("--heightmaps", a->heightmaps, "Per-leaf heightmaps: png (16-bit + sidecar), f32 or tif");
     cmd->add_flag("--masks", a->masks, "Per-leaf splat masks, one 8-bit PNG per terrain type");
     cmd->add_option("--shard", a->shard, "Bake only shard I of N (I/N); run --merge when all are done");
+    cmd->add_flag("--prepare", a->prepare, "Only build the project's database and write the plan (before a sharded bake)");
     cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)")->check(CLI::Range(0, 1024));
     cmd->add_option("--progress", a->progress, "auto (bar on a terminal, else lines), bar, lines or none");
     cmd->callback([a] {
