@@ -21,17 +21,11 @@ namespace {
 
 std::string repoDir() { return terrasynth::test::dataDir() + "/.."; }
 
-std::string readAll(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 int shell(const std::string& command, std::string* output) {
     const std::string log = terrasynth::test::scratchDir("bake_slurm_log") + "/out.txt";
     const int status = std::system((command + " > '" + log + "' 2>&1").c_str());
-    *output = readAll(log);
+    *output = terrasynth::test::readFile(log);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
@@ -66,14 +60,6 @@ private:
     bool started_ = false;
 };
 
-std::vector<std::string> filesUnder(const std::string& dir) {
-    std::vector<std::string> out;
-    if (!fs::exists(dir)) return out;
-    for (const auto& e : fs::recursive_directory_iterator(dir))
-        if (e.is_regular_file()) out.push_back(fs::relative(e.path(), dir).string());
-    std::sort(out.begin(), out.end());
-    return out;
-}
 
 }  // namespace
 
@@ -102,21 +88,21 @@ TEST(BakeSlurm, FourShardArrayEqualsASingleProcessBake) {
                                      "/scripts/bake-slurm.sh' '" + dir + "/world.tsyn' '" + dir +
                                      "/sharded' --shards 4 --cpus-per-task 1 --wait --" + options,
                                  &out);
-        ASSERT_EQ(status, 0) << out << "\n" << readAll(dir + "/sharded.slurm-logs/merge.log");
+        ASSERT_EQ(status, 0) << out << "\n" << terrasynth::test::readFile(dir + "/sharded.slurm-logs/merge.log");
     }
     // Every task baked its own share, and the merge ran after them.
     for (int shard = 0; shard < 4; ++shard) {
-        const std::string log = readAll(dir + "/sharded.slurm-logs/shard-" + std::to_string(shard) + ".log");
+        const std::string log = terrasynth::test::readFile(dir + "/sharded.slurm-logs/shard-" + std::to_string(shard) + ".log");
         EXPECT_NE(log.find("bake shard " + std::to_string(shard) + "/4: "), std::string::npos) << log;
         EXPECT_EQ(log.find(" 0 tiles baked"), std::string::npos) << log;
     }
-    EXPECT_NE(readAll(dir + "/sharded.slurm-logs/merge.log").find("tileset.json"), std::string::npos);
+    EXPECT_NE(terrasynth::test::readFile(dir + "/sharded.slurm-logs/merge.log").find("tileset.json"), std::string::npos);
 
-    const auto a = filesUnder(dir + "/single"), b = filesUnder(dir + "/sharded");
+    const auto a = terrasynth::test::filesUnder(dir + "/single"), b = terrasynth::test::filesUnder(dir + "/sharded");
     ASSERT_EQ(a, b);
     EXPECT_GE(a.size(), 86u);  // 64 + 16 + 4 + 1 tiles, bake.json, tileset.json
     int differing = 0;
     for (const std::string& f : a)
-        if (readAll(dir + "/single/" + f) != readAll(dir + "/sharded/" + f) && ++differing <= 5) ADD_FAILURE() << f << " differs";
+        if (terrasynth::test::readFile(dir + "/single/" + f) != terrasynth::test::readFile(dir + "/sharded/" + f) && ++differing <= 5) ADD_FAILURE() << f << " differs";
     EXPECT_EQ(differing, 0);
 }

@@ -47,6 +47,9 @@ Status checkBakeOptions(const BakeOptions& o) {
     if (o.region.width < 2 || o.region.height < 2)
         return Status::error("region: needs at least 2x2 samples (1 quad), got " + std::to_string(o.region.width) + "x" +
                              std::to_string(o.region.height));
+    const int64_t limit = int64_t(1) << 30;  // tile indices and implicit coordinates stay 32-bit
+    if (o.region.x < -limit || o.region.y < -limit || o.region.x + o.region.width > limit || o.region.y + o.region.height > limit)
+        return Status::error("region: must lie within +-2^30 samples of the origin");
     if (o.tile_size < 2 || o.tile_size > 4096)
         return Status::error("tile size: must be 2..4096 quads, got " + std::to_string(o.tile_size));
     if (o.levels < 1 || o.levels > 16) return Status::error("levels: must be 1..16, got " + std::to_string(o.levels));

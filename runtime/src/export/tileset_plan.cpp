@@ -41,6 +41,18 @@ uint64_t interleave(uint64_t x, uint64_t y) {
     return spread(x) | (spread(y) << 1);
 }
 
+// `items` reordered by their keys (stable for equal keys).
+template <class T>
+std::vector<T> sortedByKeys(const std::vector<T>& items, const std::vector<std::pair<uint64_t, int>>& keys) {
+    std::vector<size_t> order(items.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return keys[a] < keys[b]; });
+    std::vector<T> sorted;
+    sorted.reserve(items.size());
+    for (size_t k : order) sorted.push_back(items[k]);
+    return sorted;
+}
+
 }  // namespace
 
 BakeTree::BakeTree(const BakeOptions& options)
@@ -112,13 +124,7 @@ std::vector<TileKey> BakeTree::allTiles() const {
     }
     std::vector<std::pair<uint64_t, int>> keys(tiles.size());
     for (size_t k = 0; k < tiles.size(); ++k) keys[k] = {mortonKey(tiles[k]), -tiles[k].lod};
-    std::vector<size_t> order(tiles.size());
-    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return keys[a] < keys[b]; });
-    std::vector<TileKey> sorted;
-    sorted.reserve(tiles.size());
-    for (size_t k : order) sorted.push_back(tiles[k]);
-    return sorted;
+    return sortedByKeys(tiles, keys);
 }
 
 void BakeTree::rootExtent(double* west, double* south, double* east, double* north) const {
@@ -175,13 +181,7 @@ std::vector<BakeUnit> orderedUnits(const BakeTree& tree) {
         keys.push_back({tree.mortonKey(tiles.front()), -tiles.front().lod});
         kept.push_back(u);
     }
-    std::vector<size_t> order(kept.size());
-    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return keys[a] < keys[b]; });
-    std::vector<BakeUnit> sorted;
-    sorted.reserve(kept.size());
-    for (size_t k : order) sorted.push_back(kept[k]);
-    return sorted;
+    return sortedByKeys(kept, keys);
 }
 
 void shardRange(const std::vector<BakeUnit>& units, int index, int count, size_t* first, size_t* last) {
