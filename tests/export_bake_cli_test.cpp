@@ -381,3 +381,24 @@ TEST_F(BakeCli, BadInputExitsTwoAndLeavesNothing) {
     const test::CliRun not_a_bake = test::runTerrasynth("bake --merge '" + dir + "'");
     EXPECT_EQ(not_a_bake.exit_code, 2) << not_a_bake.out;
 }
+
+TEST_F(BakeCli, DeepTreeGetsImplicitTilingThatTheClientExpands) {
+    // 8-quad tiles over 300^2 samples: 7 levels of tree, so auto picks implicit tiling with two
+    // levels of subtree files, which the client must follow to find every tile.
+    const std::string dir = test::scratchDir("bake_cli_implicit");
+    const std::string project = writeProject(dir), world = dir + "/world";
+    const test::CliRun r = bake("'" + project + "' -o '" + world + "' --region 0,0,300,300 --tile 8 --levels 3");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("implicit tiling"), std::string::npos) << r.out;
+    int subtrees = 0, glbs = 0;
+    for (const std::string& f : test::filesUnder(world)) {
+        subtrees += f.find(".subtree") != std::string::npos;
+        glbs += f.find(".glb") != std::string::npos;
+    }
+    EXPECT_GT(subtrees, 1);
+    if (std::system("command -v node > /dev/null 2>&1") != 0) GTEST_SKIP() << "node is not installed";
+    std::string output;
+    EXPECT_EQ(runScript("node '" + repoDir() + "/scripts/check_tileset.mjs' '" + world + "'", &output), 0) << output;
+    EXPECT_NE(output.find("implicit tileset"), std::string::npos) << output;
+    EXPECT_NE(output.find(std::to_string(glbs) + " contents loaded"), std::string::npos) << output;
+}
