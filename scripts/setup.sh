@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every build and test dependency from Debian bookworm's packages (run as root, or with
-# sudo available). Idempotent: does nothing when everything is already installed.
+# sudo available). Idempotent: does nothing when everything is already installed. slurm-wlm and
+# munge serve the sharded-bake test, which starts its own throwaway cluster (scripts/slurm-local.sh).
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
@@ -10,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri
   python3-numpy
+  slurm-wlm munge
 )
 # The glTF validator runs on Node.js; machines that already have node/npm (e.g. from NodeSource)
 # keep theirs, since Debian's npm package conflicts with it.

@@ -5,7 +5,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <cstdlib>
 
@@ -64,6 +68,23 @@ Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h) {
     out.meters_per_pixel_y = field.meters_per_pixel_y;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) out.at(x, y) = field.at(x0 + x, y0 + y);
+    return out;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::vector<std::string> filesUnder(const std::string& dir) {
+    std::vector<std::string> out;
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) return out;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir, ec))
+        if (e.is_regular_file()) out.push_back(std::filesystem::relative(e.path(), dir).string());
+    std::sort(out.begin(), out.end());
     return out;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "terrasynth/heightfield.h"
 
@@ -23,6 +24,10 @@ std::string scratchDir(const std::string& name);
 Heightfield loadExemplarField(const std::string& stem);
 // Crop of a field (x0,y0,w,h), same spacing.
 Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h);
+// The bytes of a file ("" when it cannot be read).
+std::string readFile(const std::string& path);
+// Every regular file under `dir`, as sorted paths relative to it (empty when dir is absent).
+std::vector<std::string> filesUnder(const std::string& dir);
 
 }  // namespace terrasynth::test
 

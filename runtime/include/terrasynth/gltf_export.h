@@ -111,6 +111,8 @@ struct TypeMaskOptions {
 // [A-Za-z0-9_-]), 255 where the pixel's type is that type. `types` is width*height type ids (see
 // typesFromSources); pixels of unknown type (255) are 0 in every mask. Returns the paths written, in
 // type order; types absent from the map still get an (all-zero) mask so splat channels are stable.
+// The path writeTypeMasks writes the mask of type `index` to.
+std::string typeMaskPath(const std::string& prefix, const std::vector<std::string>& type_names, size_t index);
 Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int width, int height,
                                                 const std::vector<uint8_t>& types,
                                                 const std::vector<std::string>& type_names,

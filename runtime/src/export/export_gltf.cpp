@@ -31,28 +31,6 @@ Status checkOptions(const GltfExportOptions& o) {
     return Status::ok();
 }
 
-// Runs body(i) for i in [0, n) on `threads` threads; stops handing out work after the first error.
-Status parallelFor(int n, int threads, const std::function<Status(int)>& body) {
-    std::atomic<int> next{0};
-    std::mutex mutex;
-    Status first = Status::ok();
-    auto worker = [&] {
-        for (int i = next++; i < n; i = next++) {
-            Status s = body(i);
-            if (!s) {
-                std::lock_guard<std::mutex> lock(mutex);
-                if (first) first = s;
-                next = n;
-            }
-        }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
-    return first;
-}
-
 Heightfield cropField(const Heightfield& f, int x0, int y0, int w, int h) {
     Heightfield out(w, h, f.meters_per_pixel_x);
     out.meters_per_pixel_y = f.meters_per_pixel_y;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -96,5 +97,9 @@ void buildModel(const ModelInputs& inputs, tinygltf::Model& model, BinaryLayout&
 // streaming `layout`'s blocks; temporaries renamed into place. Reports the bytes written.
 Status writeGltfFiles(const std::string& path, tinygltf::Model& model, const BinaryLayout& layout,
                       size_t* json_bytes, size_t* file_bytes);
+
+// Runs body(i) for i in [0, n) on `threads` threads (the caller's among them), handing out indices
+// in increasing order; stops handing out work after the first error and returns it.
+Status parallelFor(int n, int threads, const std::function<Status(int)>& body);
 
 }  // namespace terrasynth::export_detail

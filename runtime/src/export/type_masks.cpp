@@ -37,6 +37,10 @@ std::vector<float> boxBlur(const std::vector<float>& in, int w, int h, int r) {
 
 }  // namespace
 
+std::string typeMaskPath(const std::string& prefix, const std::vector<std::string>& type_names, size_t index) {
+    return prefix + sanitise(type_names[index], index) + ".png";
+}
+
 Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int width, int height,
                                                 const std::vector<uint8_t>& types,
                                                 const std::vector<std::string>& type_names,
@@ -78,7 +82,7 @@ Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int w
     }
     std::vector<std::string> paths;
     for (size_t t = 0; t < count; ++t) {
-        const std::string path = prefix + sanitise(type_names[t], t) + ".png";
+        const std::string path = typeMaskPath(prefix, type_names, t);
         if (Status s = writePng8(path, width, height, 1, masks[t]); !s) return s;
         paths.push_back(path);
     }
