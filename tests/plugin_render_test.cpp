@@ -5,7 +5,6 @@
 // When DISPLAY is unset the test re-runs itself under xvfb-run; it skips only if xvfb-run is missing.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -28,10 +27,6 @@ namespace {
 constexpr int kWidth = 480, kHeight = 270;
 constexpr double kPitchDeg = 12.0;  // below the horizon: the sky (clear colour) stays in view
 const osg::Vec4 kClear(1.0f, 0.0f, 1.0f, 1.0f);  // magenta: no terrain colour is ever this
-
-bool haveProgram(const char* name) {
-    return std::system((std::string("command -v ") + name + " >/dev/null 2>&1").c_str()) == 0;
-}
 
 struct Capture : osg::Camera::DrawCallback {
     osg::ref_ptr<osg::Image> image = new osg::Image;
@@ -156,15 +151,9 @@ void runFlight() {
 }
 
 TEST(PluginRender, FlightShowsNoHolesOrCracks) {
-    const char* display = std::getenv("DISPLAY");
-    if (!display || !*display) {
-        if (std::getenv("TERRASYNTH_RENDER_CHILD")) FAIL() << "xvfb-run gave no DISPLAY";
-        if (!haveProgram("xvfb-run")) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
-        char self[4096] = {};
-        ASSERT_GT(readlink("/proc/self/exe", self, sizeof self - 1), 0);
-        const std::string cmd = std::string("TERRASYNTH_RENDER_CHILD=1 xvfb-run -a -s \"-screen 0 1280x720x24\" '") +
-                                self + "' --gtest_filter=PluginRender.FlightShowsNoHolesOrCracks";
-        const int rc = std::system(cmd.c_str());
+    const int rc = test::rerunUnderXvfbUnlessDisplay("PluginRender.FlightShowsNoHolesOrCracks");
+    if (rc == test::kNoXvfb) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
+    if (rc != test::kHaveDisplay) {
         ASSERT_EQ(rc, 0) << "the flight under xvfb-run failed (its output is above)";
         return;
     }
