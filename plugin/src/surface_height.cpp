@@ -2,20 +2,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "terrasynth/mesh.h"
 #include "terrasynth_plugin/terrain_node.h"
 
 namespace terrasynth::plugin {
-namespace {
-
-// Height at fractional cell position (fu, fw) in [0,1]^2 of the cell with corners a (north-west),
-// b (north-east), c (south-west), d (south-east), on the mesh's triangles (a, c, b) and (b, c, d):
-// the cell is split along its north-east to south-west diagonal (terrasynth/mesh.h grids).
-double onCellTriangles(double a, double b, double c, double d, double fu, double fw) {
-    if (fu + fw <= 1.0) return a + fu * (b - a) + fw * (c - a);
-    return d + (1.0 - fu) * (c - d) + (1.0 - fw) * (b - d);
-}
-
-}  // namespace
 
 std::optional<float> TerrainNode::heightAt(double wx, double wy) const {
     osg::ref_ptr<const osg::Vec3Array> vertices;
@@ -44,7 +34,7 @@ std::optional<float> TerrainNode::heightAt(double wx, double wy) const {
         return std::nullopt;
     const double fu = std::clamp(u - i, 0.0, 1.0), fw = std::clamp(w - j, 0.0, 1.0);
     return static_cast<float>(
-        onCellTriangles(a.z(), vertex(i + 1, j).z(), vertex(i, j + 1).z(), vertex(i + 1, j + 1).z(), fu, fw));
+        heightOnGridCell(a.z(), vertex(i + 1, j).z(), vertex(i, j + 1).z(), vertex(i + 1, j + 1).z(), fu, fw));
 }
 
 }  // namespace terrasynth::plugin
