@@ -128,6 +128,13 @@ void runChecks() {
     ASSERT_TRUE(added.valid());
     EXPECT_TRUE(isGreen(pixel(*added, 280, 200))) << "geometry added after the overlay drew is missing";
     EXPECT_TRUE(isRed(pixel(*added, 100, 200)));
+    // Depth testing still works after the overlay: a farther rectangle drawn after the green one
+    // stays hidden behind it.
+    root->addChild(rectangle(0.5f, 1.0f, -0.5f, {1, 1, 0, 1}));
+    frame();
+    osg::ref_ptr<osg::Image> depth = shot("depth_after_overlay.png", true);
+    ASSERT_TRUE(depth.valid());
+    EXPECT_TRUE(isGreen(pixel(*depth, 280, 200))) << "the overlay broke depth testing";
 
     // A click on the panel's button reaches ImGui only.
     recorder->types.clear();

@@ -29,10 +29,13 @@ void drawImGuiOverOsg(osg::State& state) {
     ImGui::Render();
     ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
 
-    // ImGui restored what it saved, but through its own calls: make OSG assume nothing about the
-    // modes, attributes and program it had applied.
+    // The program was changed behind OSG's back: make it re-apply its program and, to be safe, every
+    // attribute. Modes are left alone on purpose: the backend restores every enable it touches
+    // (glPushAttrib(GL_ENABLE_BIT)), so OSG's record of them is still true, whereas
+    // State::dirtyAllModes() *inverts* that record and OSG then skips the glEnable(GL_DEPTH_TEST)
+    // the next frame needs (the terrain drew without depth testing).
     state.setLastAppliedProgramObject(nullptr);
-    state.dirtyAllModes();
+    state.haveAppliedAttribute(osg::StateAttribute::PROGRAM);
     state.dirtyAllAttributes();
 }
 

@@ -10,9 +10,9 @@
 namespace terrasynth::host {
 
 // Renders ImGui's current frame (ImGui::Render must not have been called yet) over the viewport,
-// entering from OSG's GL state and leaving OSG's state tracker marked fully dirty, so the next OSG
-// draw re-applies everything it needs (OpenSceneGraph issue 924: geometry merged after an overlay
-// drew would otherwise stop drawing, because OSG believes client arrays are still enabled).
+// entering from OSG's GL state and leaving OSG's state tracker true to what GL then is, so the
+// next OSG draw re-applies what it needs (OpenSceneGraph issue 924: geometry merged after an
+// overlay drew would otherwise stop drawing, because OSG believes client arrays are still enabled).
 void drawImGuiOverOsg(osg::State& state);
 
 // Reads the current draw buffer (width x height, RGB) and writes it as a PNG at `path`, atomically

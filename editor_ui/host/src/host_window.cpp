@@ -59,6 +59,8 @@ struct HostWindow::Impl {
     double events_ms = 0.0;
     std::string screenshot_path;
     bool screenshot_with_overlay = false;
+    osg::ref_ptr<osg::Image> capture;
+    bool capture_with_overlay = false;
 
     static Impl& of(GLFWwindow* w) { return *static_cast<Impl*>(glfwGetWindowUserPointer(w)); }
     void push(InputEvent e) { pending.push_back(e); }
@@ -327,7 +329,14 @@ FrameTiming HostWindow::endFrame(double simulation_time_s) {
         impl.screenshot_path.clear();
         t.screenshot_ms += msBetween(s0, Clock::now());
     };
+    auto capture = [&] {
+        const auto s0 = Clock::now();
+        impl.capture->readPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE);
+        impl.capture = nullptr;
+        t.screenshot_ms += msBetween(s0, Clock::now());
+    };
     if (!impl.screenshot_path.empty() && !impl.screenshot_with_overlay) screenshot();
+    if (impl.capture && !impl.capture_with_overlay) capture();
 
     const auto overlay_start = Clock::now();
     drawImGuiOverOsg(*impl.embedded->getState());
@@ -335,6 +344,7 @@ FrameTiming HostWindow::endFrame(double simulation_time_s) {
     t.overlay_ms = msBetween(overlay_start, Clock::now());
 
     if (!impl.screenshot_path.empty()) screenshot();
+    if (impl.capture) capture();
 
     const auto swap_start = Clock::now();
     glfwSwapBuffers(impl.window);
@@ -350,6 +360,11 @@ bool HostWindow::closeRequested() const { return impl_->close_requested || glfwW
 void HostWindow::requestScreenshot(const std::string& png_path, bool with_overlay) {
     impl_->screenshot_path = png_path;
     impl_->screenshot_with_overlay = with_overlay;
+}
+
+void HostWindow::requestCapture(osg::Image* image, bool with_overlay) {
+    impl_->capture = image;
+    impl_->capture_with_overlay = with_overlay;
 }
 
 namespace {

@@ -24,7 +24,7 @@ struct FrameTiming {  // milliseconds of one frame
     double cull_ms = 0.0;
     double draw_ms = 0.0;
     double overlay_ms = 0.0;
-    double screenshot_ms = 0.0;  // reading back and writing a screenshot (0 on most frames)
+    double screenshot_ms = 0.0;  // reading back (and writing) a screenshot or capture; 0 on most frames
     double swap_ms = 0.0;
     double frame_ms = 0.0;  // beginFrame start to endFrame end
 

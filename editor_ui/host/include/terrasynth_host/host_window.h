@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include <osg/Image>
 #include <osg/Vec4>
 #include <osg/ref_ptr>
 #include <osgViewer/Viewer>
@@ -86,6 +87,9 @@ public:
     void requestScreenshot(const std::string& png_path, bool with_overlay);
     // Result of the last screenshot taken: ok, or why it could not be written.
     const Status& lastScreenshotStatus() const { return screenshot_status_; }
+    // Reads the next endFrame's image (GL_RGB, row 0 at the bottom) into `image` instead of a file,
+    // for checks on what was drawn. The caller keeps `image` alive until that endFrame returns.
+    void requestCapture(osg::Image* image, bool with_overlay);
 
     // Scripted input, applied at the next beginFrame in the order given, routed like real input.
     void injectKey(int glfw_key, bool pressed, int mods = 0);
