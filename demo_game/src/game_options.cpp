@@ -15,6 +15,7 @@
 #include "terrasynth/database.h"
 #include "terrasynth/heightfield_io.h"
 #include "opencl_check.h"
+#include "terrasynth_plugin/plugin_options.h"
 
 namespace terrasynth::game {
 namespace fs = std::filesystem;
@@ -169,10 +170,17 @@ Status checkDatabaseInputs(const Project& project) {
 
 }  // namespace
 
+std::string gameTerrainOptions(const GameOptions& o) {
+    return "tileSize=64 pixelError=10 viewRadius=200000 cacheMB=384 " + o.terrain_options;
+}
+
 Result<Project> checkBeforeWindow(const GameOptions& o) {
     if (Status s = checkOutputs(o); !s) return s;
+    if (auto terrain = plugin::parsePluginOptions(gameTerrainOptions(o)); !terrain)
+        return terrain.status().withContext("--terrain-options");
     auto project = loadProject(o.project_path);
     if (!project) return project.status();
+    if (o.seed) project->synthesis.seed = *o.seed;
     if (Status s = checkDatabaseInputs(*project); !s) return s;
     if (o.backend == SynthesisBackend::OpenCL) {
         if (Status s = checkOpenClDevice(); !s)

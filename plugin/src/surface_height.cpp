@@ -7,7 +7,7 @@
 
 namespace terrasynth::plugin {
 
-std::optional<float> TerrainNode::heightAt(double wx, double wy) const {
+std::optional<float> TerrainNode::heightAt(double wx, double wy, int* tile_level) const {
     osg::ref_ptr<const osg::Vec3Array> vertices;
     TileKey key;
     {
@@ -33,6 +33,7 @@ std::optional<float> TerrainNode::heightAt(double wx, double wy) const {
     if (std::fabs(a.x() - i * step_m) > 0.25 * step_m || std::fabs(-a.y() - j * step_m) > 0.25 * step_m)
         return std::nullopt;
     const double fu = std::clamp(u - i, 0.0, 1.0), fw = std::clamp(w - j, 0.0, 1.0);
+    if (tile_level) *tile_level = key.level;
     return static_cast<float>(
         heightOnGridCell(a.z(), vertex(i + 1, j).z(), vertex(i, j + 1).z(), vertex(i + 1, j + 1).z(), fu, fw));
 }

@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <mutex>
+
 #include <osg/Program>
 #include <osg/Shader>
 #include <osg/Uniform>
+#include <osgUtil/RenderBin>
 
 #include "terrasynth_plugin/terrain_look.h"
 
@@ -99,6 +102,19 @@ void setUniform(osg::StateSet& ss, const char* name, const osg::Vec4& v) {
     u->set(v);
 }
 
+// Tiles are drawn nearest first: the depth test then rejects hidden fragments before they are
+// shaded (early z), which is most of a software rasterizer's fill cost, and the order depends only
+// on the camera (the default state sort follows heap addresses).
+const char* kFrontToBackBin = "terrasynth_front_to_back";
+
+void registerFrontToBackBin() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        osgUtil::RenderBin::addRenderBinPrototype(kFrontToBackBin,
+                                                  new osgUtil::RenderBin(osgUtil::RenderBin::SORT_FRONT_TO_BACK));
+    });
+}
+
 }  // namespace
 
 TerrainLook lookForHeightRange(float min_height_m, float max_height_m) {
@@ -126,6 +142,8 @@ void installTerrainProgram(osg::StateSet& ss) {
     program->addBindAttribLocation("ts_coarse_z", kCoarseHeightAttribute);
     program->addBindAttribLocation("ts_type", kTypeAttribute);
     ss.setAttributeAndModes(program.get());
+    registerFrontToBackBin();
+    ss.setRenderBinDetails(0, kFrontToBackBin);
     // No morph by default: roots, and files written by osgconv (no cull sets ts_lod_k).
     ss.addUniform(new osg::Uniform("ts_parent_spacing", 0.0f));
     ss.addUniform(new osg::Uniform("ts_lod_k", 0.0f));

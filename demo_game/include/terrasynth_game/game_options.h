@@ -49,6 +49,11 @@ std::optional<GameOptions> parseGameOptions(int argc, char** argv, std::optional
 // be read, and an OpenCL device exists for --backend opencl. Returns the loaded project.
 Result<Project> checkBeforeWindow(const GameOptions& options);
 
+// The terrain's option string (the plugin's keys, as osgviewer -O takes them): the game's defaults,
+// then --terrain-options (later tokens win). The defaults keep an llvmpipe frame in budget and the
+// process under 1 GB: tileSize=64 pixelError=10 viewRadius=200000 cacheMB=384.
+std::string gameTerrainOptions(const GameOptions& options);
+
 // "WxH" -> (W, H) in [160, 8192]; "X,Y" -> (X, Y). Errors name the flag.
 Status parseSize(const std::string& text, int* width, int* height);
 Status parsePair(const std::string& flag, const std::string& text, double* x, double* y);

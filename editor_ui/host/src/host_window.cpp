@@ -1,6 +1,8 @@
 // HostWindow: the GLFW window, the embedded single-threaded viewer, ImGui, input routing, timing.
 #include "terrasynth_host/host_window.h"
 
+#include <time.h>
+
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -25,6 +27,14 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
+double cpuMs(clockid_t clock) {
+    timespec t{};
+    clock_gettime(clock, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+double threadCpuMs() { return cpuMs(CLOCK_THREAD_CPUTIME_ID); }
+double processCpuMs() { return cpuMs(CLOCK_PROCESS_CPUTIME_ID); }
+
 std::string g_glfw_error;  // GLFW reports errors through a C callback
 void onGlfwError(int code, const char* description) {
     g_glfw_error = std::string(description ? description : "unknown") + " (GLFW error " + std::to_string(code) + ")";
@@ -34,8 +44,12 @@ std::atomic<bool> g_window_alive{false};
 // Marks the end of the cull (the draw starts) and drains the GL pipeline at the end of the draw.
 struct DrawStartMarker : osg::Camera::DrawCallback {
     Clock::time_point* at;
-    explicit DrawStartMarker(Clock::time_point* t) : at(t) {}
-    void operator()(osg::RenderInfo&) const override { *at = Clock::now(); }
+    double* cpu;
+    DrawStartMarker(Clock::time_point* t, double* c) : at(t), cpu(c) {}
+    void operator()(osg::RenderInfo&) const override {
+        *at = Clock::now();
+        *cpu = processCpuMs();
+    }
 };
 struct FinishDraw : osg::Camera::DrawCallback {
     void operator()(osg::RenderInfo&) const override { glFinish(); }
@@ -56,6 +70,7 @@ struct HostWindow::Impl {
     bool close_requested = false;
     bool first_frame = true;
     Clock::time_point frame_start, app_start, draw_start;
+    double frame_start_cpu = 0.0, draw_start_cpu = 0.0;
     double events_ms = 0.0;
     std::string screenshot_path;
     bool screenshot_with_overlay = false;
@@ -217,7 +232,7 @@ Result<std::unique_ptr<HostWindow>> HostWindow::create(const HostOptions& o) {
     osg::Camera* camera = viewer.getCamera();
     camera->setClearColor(o.clear_color);
     camera->setProjectionMatrixAsPerspective(o.fovy_deg, double(host->width_) / host->height_, 1.0, 1e5);
-    camera->setInitialDrawCallback(new DrawStartMarker(&impl.draw_start));
+    camera->setInitialDrawCallback(new DrawStartMarker(&impl.draw_start, &impl.draw_start_cpu));
     if (o.finish_gl_for_timing) camera->setFinalDrawCallback(new FinishDraw);
     viewer.realize();
 
@@ -260,6 +275,7 @@ HostWindow::~HostWindow() {
 bool HostWindow::beginFrame() {
     Impl& impl = *impl_;
     impl.frame_start = Clock::now();
+    impl.frame_start_cpu = threadCpuMs();
     glfwPollEvents();
     int w = 0, h = 0;
     glfwGetFramebufferSize(impl.window, &w, &h);
@@ -322,6 +338,7 @@ FrameTiming HostWindow::endFrame(double simulation_time_s) {
     const bool drew = impl.draw_start != Clock::time_point{};
     t.cull_ms = msBetween(render_start, drew ? impl.draw_start : mark);
     t.draw_ms = drew ? msBetween(impl.draw_start, mark) : 0.0;
+    t.draw_cpu_ms = drew ? processCpuMs() - impl.draw_start_cpu : 0.0;
 
     auto screenshot = [&] {
         const auto s0 = Clock::now();
@@ -351,6 +368,7 @@ FrameTiming HostWindow::endFrame(double simulation_time_s) {
     const auto end = Clock::now();
     t.swap_ms = msBetween(swap_start, end);
     t.frame_ms = msBetween(impl.frame_start, end);
+    t.main_cpu_ms = threadCpuMs() - impl.frame_start_cpu;
     return t;
 }
 

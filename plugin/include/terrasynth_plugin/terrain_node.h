@@ -118,8 +118,9 @@ public:
     // triangles of the finest resident tile containing the point (the mesh's own split: each cell's
     // north-east to south-west diagonal). Within that tile's geometric error of the source's heights
     // (exact at the samples of level-0 tiles). nullopt when no resident tile contains the point.
-    // Thread-safe; takes the node's lock only to find the tile.
-    std::optional<float> heightAt(double world_x, double world_y) const;
+    // `tile_level` (optional) receives the level of the tile that answered. Thread-safe; takes the
+    // node's lock only to find the tile.
+    std::optional<float> heightAt(double world_x, double world_y, int* tile_level = nullptr) const;
     // Min and max height of the finest resident tiles over a level-0 region; nullopt if none.
     std::optional<std::pair<float, float>> heightRange(const PixelWindow& level0_region) const;
 

@@ -27,6 +27,11 @@ struct FrameTiming {  // milliseconds of one frame
     double screenshot_ms = 0.0;  // reading back (and writing) a screenshot or capture; 0 on most frames
     double swap_ms = 0.0;
     double frame_ms = 0.0;  // beginFrame start to endFrame end
+    // CPU time, which other processes on a shared machine do not inflate the way they inflate the
+    // wall-clock figures above: the main thread's over the whole frame, and the whole process's
+    // (llvmpipe's rasterizer threads included, and any worker running meanwhile) during the draw.
+    double main_cpu_ms = 0.0;
+    double draw_cpu_ms = 0.0;
 
     double glMs() const { return draw_ms + overlay_ms + swap_ms; }
     // Everything the main thread does itself: the frame less the GL draw and screenshot I/O.
