@@ -28,9 +28,11 @@ std::string dataDir() { return env("TERRASYNTH_DATA_DIR", TERRASYNTH_TEST_DATA_D
 std::string sharedExemplarsDir() { return env("TERRASYNTH_SHARED_EXEMPLARS", TERRASYNTH_TEST_SHARED_EXEMPLARS); }
 std::string binDir() { return env("TERRASYNTH_BIN_DIR", TERRASYNTH_TEST_BIN_DIR); }
 
-CliRun runTerrasynth(const std::string& args) {
+CliRun runTerrasynth(const std::string& args) { return runCommand(binDir() + "/terrasynth " + args); }
+
+CliRun runCommand(const std::string& command_line) {
     CliRun r;
-    FILE* pipe = ::popen((binDir() + "/terrasynth " + args + " 2>&1").c_str(), "r");
+    FILE* pipe = ::popen((command_line + " 2>&1").c_str(), "r");
     if (!pipe) return r;
     char buffer[4096];
     size_t n;

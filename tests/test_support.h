@@ -16,6 +16,8 @@ struct CliRun {
     std::string out;
 };
 CliRun runTerrasynth(const std::string& args);
+// Runs a shell command line; stdout and stderr together.
+CliRun runCommand(const std::string& command_line);
 bool terrasynthBuilt();
 // A fresh, empty scratch directory for one test: <build>/test_tmp/<name>.
 std::string scratchDir(const std::string& name);

@@ -67,7 +67,7 @@ std::optional<GameOptions> parseGameOptions(int argc, char** argv, std::optional
         ->expected(0, 1)
         ->default_str("0.0333")
         ->check(CLI::Range(0.001, 1.0));
-    app.add_option("--screenshot-every", o.screenshot_every, "Save a screenshot every N frames (needs --out)")
+    app.add_option("--screenshot-every", o.screenshot_every, "Save a screenshot every N frames (N steps with --fixed-dt: the settled 3D view); needs --out")
         ->check(CLI::Range(1, 1000000));
     app.add_option("--out", o.out_dir, "Folder for screenshots");
     app.add_option("--stats", o.stats_path, "Write frame timings and flight statistics (JSON) at exit");

@@ -482,13 +482,16 @@ bool Session::flightFrame() {
     const auto now = Clock::now();
     const double wall_dt = std::min(0.1, std::chrono::duration<double>(now - last_frame_).count());
     last_frame_ = now;
+    bool stepped = false;
     if (o_.deterministic()) {
         std::vector<std::pair<double, double>> needed{{aircraft_.x, aircraft_.y}};
         if (autopilot_) needed = autopilot_->lookaheadPoints(aircraft_);
-        if (groundReadyFor(needed) && world_.rings->ready(ring_blocks)) step(o_.fixed_dt_s);
+        stepped = groundReadyFor(needed) && world_.rings->ready(ring_blocks);
+        if (stepped) step(o_.fixed_dt_s);
         else ++stats_.waiting_frames;
     } else if (!quit_) {
         step(wall_dt);
+        stepped = true;
     }
     const CameraPose pose = chaseCamera(aircraft_, [this](double x, double y) { return cameraGround(x, y); });
     applyCamera(pose);
@@ -500,12 +503,16 @@ bool Session::flightFrame() {
     if (hud_visible_) buildHud(smoothed_frame_ms_);
 
     ++frame_index_;
+    // Real-time runs count frames; deterministic ones count simulation steps, so the same flight
+    // takes its screenshots at the same moments however long it waited for the ground.
+    const bool screenshot_due = o_.screenshot_every > 0 && (o_.deterministic()
+                                    ? stepped && stats_.steps % o_.screenshot_every == 0
+                                    : frame_index_ % o_.screenshot_every == 0);
     osg::ref_ptr<osg::Image> capture;
     if (o_.check_holes_every > 0 && frame_index_ % o_.check_holes_every == 0) {
         capture = new osg::Image;
         host_->requestCapture(capture.get(), false);
     }
-    const bool screenshot_due = o_.screenshot_every > 0 && frame_index_ % o_.screenshot_every == 0;
     if (screenshot_due && !o_.deterministic()) {
         char name[64];
         std::snprintf(name, sizeof name, "/frame_%06d.png", frame_index_);

@@ -28,7 +28,7 @@ struct GameOptions {
     SynthesisBackend backend = SynthesisBackend::OpenCL;  // --backend
     double autopilot_s = 0.0;                 // --autopilot: fly this long (simulated s), then quit; 0 = off
     double fixed_dt_s = 0.0;                  // --fixed-dt: simulated seconds per frame; 0 = wall clock
-    int screenshot_every = 0;                 // --screenshot-every N frames (needs --out)
+    int screenshot_every = 0;                 // --screenshot-every N frames (steps with --fixed-dt; needs --out)
     std::string out_dir;                      // --out
     std::string stats_path;                   // --stats: JSON written at exit
     std::string terrain_options;              // --terrain-options: the plugin's option string
