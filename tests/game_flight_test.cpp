@@ -9,6 +9,8 @@
 
 #include "terrasynth/terrain.h"
 #include "terrasynth_game/autopilot.h"
+#include "terrasynth_game/chase_camera.h"
+#include "terrasynth_game/rings.h"
 #include "terrasynth_game/exact_ground.h"
 #include "terrasynth_game/flight_model.h"
 #include "test_support.h"
@@ -181,6 +183,52 @@ TEST(GameFlight, GentleTouchSlidesHardHitCrashes) {
     stepAircraft(turning, right, 0.5, flat, p);
     stepAircraft(turning, {}, 3.0, flat, p);
     EXPECT_GT(std::remainder(turning.heading - cruise.heading, 2 * M_PI), 0.02);
+}
+
+TEST(GameCamera, NeverBelowTwoMetresAboveTheGround) {
+    Aircraft a;
+    a.x = 1000.0;
+    a.y = 2000.0;
+    a.z = 500.0;
+    a.heading = 0.3;
+    // Ground rising steeply behind the aircraft: the eye is lifted to 2 m above it.
+    auto steep = [](double x, double y) -> std::optional<double> { return 480.0 + 1.0 * (2000.0 - y); };
+    const CameraPose lifted = chaseCamera(a, steep);
+    EXPECT_NEAR(lifted.eye.z(), *steep(lifted.eye.x(), lifted.eye.y()) + 2.0, 1e-9);
+    // Flat ground far below: the eye stays where the chase puts it, behind and above.
+    auto low = [](double, double) -> std::optional<double> { return 0.0; };
+    const CameraPose free = chaseCamera(a, low);
+    EXPECT_NEAR(free.eye.z(), a.z + ChaseSettings{}.above_m, 1e-9);
+    EXPECT_LT((free.eye - osg::Vec3d(a.x, a.y, a.z)) * osg::Vec3d(std::sin(a.heading), std::cos(a.heading), 0.0), 0.0);
+    // Unknown ground: no lift.
+    const CameraPose unknown = chaseCamera(a, [](double, double) { return std::optional<double>(); });
+    EXPECT_DOUBLE_EQ(unknown.eye.z(), free.eye.z());
+}
+
+TEST(GameRings, SitesFollowRidgesAndTheSeed) {
+    // A north-south ridge: heights fall away east and west of column 32.
+    Heightfield block(GroundCache::kBlock + 1, GroundCache::kBlock + 1, 370.4);
+    for (int y = 0; y < block.height; ++y)
+        for (int x = 0; x < block.width; ++x) block.at(x, y) = 2000.0f - 40.0f * std::abs(x - 32) + 0.5f * y;
+    const BlockKey key{kRingLevel, 3, -2};
+    const std::vector<Ring> rings = ridgeSites(block, key, 92.6, 42);
+    ASSERT_FALSE(rings.empty());
+    EXPECT_LE(rings.size(), static_cast<size_t>(kRingsPerBlock));
+    for (const Ring& r : rings) {
+        // On the crest, facing along it (north or south).
+        EXPECT_NEAR(r.x, (3 * GroundCache::kBlock + 32) * 370.4, 1.0);
+        EXPECT_NEAR(std::fabs(std::cos(r.facing)), 1.0, 1e-9);
+    }
+    // The seed decides which crest samples: same seed same rings, another seed others.
+    EXPECT_EQ(ridgeSites(block, key, 92.6, 42).front().id, rings.front().id);
+    bool differs = false;
+    for (uint32_t seed = 1; seed < 6 && !differs; ++seed) differs = ridgeSites(block, key, 92.6, seed).front().id != rings.front().id;
+    EXPECT_TRUE(differs);
+    // Flying through a ring's disc counts; passing beside it does not.
+    const Ring& r = rings.front();
+    const double ax = std::sin(r.facing), ay = std::cos(r.facing);
+    EXPECT_TRUE(passesThrough(r, r.x - 50 * ax, r.y - 50 * ay, r.z + 10, r.x + 50 * ax, r.y + 50 * ay, r.z + 10));
+    EXPECT_FALSE(passesThrough(r, r.x - 50 * ax, r.y - 50 * ay, r.z + 200, r.x + 50 * ax, r.y + 50 * ay, r.z + 200));
 }
 
 TEST(GameFlight, SameInputsSameBits) {

@@ -200,12 +200,7 @@ void runChecks() {
 }
 
 TEST(HostWindow, OverlayRoutingScreenshotsAndTiming) {
-    const int rc = test::rerunUnderXvfbUnlessDisplay("HostWindow.*");
-    if (rc == test::kNoXvfb) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
-    if (rc != test::kHaveDisplay) {
-        ASSERT_EQ(rc, 0) << "the window test under xvfb-run failed (its output is above)";
-        return;
-    }
+    TERRASYNTH_NEED_DISPLAY("HostWindow.*");
     runChecks();
 }
 

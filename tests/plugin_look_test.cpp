@@ -215,25 +215,13 @@ void homeView() {
     EXPECT_GT(sum / std::max(terrain, 1), 70.0) << "the home view is dark";
 }
 
-int displayOrRerun(const char* filter) { return test::rerunUnderXvfbUnlessDisplay(filter); }
-
 TEST(PluginLook, TopViewHasATintSpreadAndAFixedSun) {
-    const int rc = displayOrRerun("PluginLook.TopViewHasATintSpreadAndAFixedSun");
-    if (rc == test::kNoXvfb) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
-    if (rc != test::kHaveDisplay) {
-        ASSERT_EQ(rc, 0) << "the render under xvfb-run failed (its output is above)";
-        return;
-    }
+    TERRASYNTH_NEED_DISPLAY("PluginLook.TopViewHasATintSpreadAndAFixedSun");
     topView();
 }
 
 TEST(PluginLook, HomeViewShowsTheExtentObliquelyFromAbove) {
-    const int rc = displayOrRerun("PluginLook.HomeViewShowsTheExtentObliquelyFromAbove");
-    if (rc == test::kNoXvfb) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
-    if (rc != test::kHaveDisplay) {
-        ASSERT_EQ(rc, 0) << "the render under xvfb-run failed (its output is above)";
-        return;
-    }
+    TERRASYNTH_NEED_DISPLAY("PluginLook.HomeViewShowsTheExtentObliquelyFromAbove");
     homeView();
 }
 

@@ -94,12 +94,7 @@ void runFlight() {
 }
 
 TEST(PluginRender, FlightShowsNoHolesOrCracks) {
-    const int rc = test::rerunUnderXvfbUnlessDisplay("PluginRender.FlightShowsNoHolesOrCracks");
-    if (rc == test::kNoXvfb) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
-    if (rc != test::kHaveDisplay) {
-        ASSERT_EQ(rc, 0) << "the flight under xvfb-run failed (its output is above)";
-        return;
-    }
+    TERRASYNTH_NEED_DISPLAY("PluginRender.FlightShowsNoHolesOrCracks");
     runFlight();
 }
 

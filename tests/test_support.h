@@ -32,6 +32,17 @@ Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h);
 // (its output goes to ours); kNoXvfb when xvfb-run is missing. A child without a display fails.
 constexpr int kHaveDisplay = -1000, kNoXvfb = -1001;
 int rerunUnderXvfbUnlessDisplay(const std::string& gtest_filter);
+// At the top of a TEST that needs a window: with a display, go on; otherwise run this test again
+// under xvfb-run, check its exit code and return (skip when xvfb-run is missing).
+#define TERRASYNTH_NEED_DISPLAY(gtest_filter)                                                   \
+    do {                                                                                        \
+        const int display_rc = ::terrasynth::test::rerunUnderXvfbUnlessDisplay(gtest_filter);   \
+        if (display_rc == ::terrasynth::test::kNoXvfb) GTEST_SKIP() << "no DISPLAY and no xvfb-run"; \
+        if (display_rc != ::terrasynth::test::kHaveDisplay) {                                    \
+            ASSERT_EQ(display_rc, 0) << "the test under xvfb-run failed (its output is above)"; \
+            return;                                                                             \
+        }                                                                                       \
+    } while (0)
 // "xvfb-run -a -s '-screen 0 1280x720x24' " to prefix a command that opens a window, or "" when
 // DISPLAY is already set.
 std::string xvfbPrefix();

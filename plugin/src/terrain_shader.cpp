@@ -81,24 +81,10 @@ void main() {
 }
 )";
 
-void setUniform(osg::StateSet& ss, const char* name, float v) {
-    osg::Uniform* u = ss.getOrCreateUniform(name, osg::Uniform::FLOAT);
-    u->setDataVariance(osg::Object::DYNAMIC);
-    u->set(v);
-}
-void setUniform(osg::StateSet& ss, const char* name, const osg::Vec2& v) {
-    osg::Uniform* u = ss.getOrCreateUniform(name, osg::Uniform::FLOAT_VEC2);
-    u->setDataVariance(osg::Object::DYNAMIC);
-    u->set(v);
-}
-void setUniform(osg::StateSet& ss, const char* name, const osg::Vec3& v) {
-    osg::Uniform* u = ss.getOrCreateUniform(name, osg::Uniform::FLOAT_VEC3);
-    u->setDataVariance(osg::Object::DYNAMIC);
-    u->set(v);
-}
-void setUniform(osg::StateSet& ss, const char* name, const osg::Vec4& v) {
-    osg::Uniform* u = ss.getOrCreateUniform(name, osg::Uniform::FLOAT_VEC4);
-    u->setDataVariance(osg::Object::DYNAMIC);
+template <class T>
+void setUniform(osg::StateSet& ss, const char* name, osg::Uniform::Type type, const T& v) {
+    osg::Uniform* u = ss.getOrCreateUniform(name, type);
+    u->setDataVariance(osg::Object::DYNAMIC);  // the look may change while a frame is drawn
     u->set(v);
 }
 
@@ -151,19 +137,21 @@ void installTerrainProgram(osg::StateSet& ss) {
 }
 
 void applyLook(osg::StateSet& ss, const TerrainLook& look) {
-    setUniform(ss, "ts_sun", sunDirection(look));
-    setUniform(ss, "ts_light", osg::Vec2(look.ambient, look.diffuse));
+    setUniform(ss, "ts_sun", osg::Uniform::FLOAT_VEC3, sunDirection(look));
+    setUniform(ss, "ts_light", osg::Uniform::FLOAT_VEC2, osg::Vec2(look.ambient, look.diffuse));
     // Blend bands scale with the tint range so a low, flat world still shows its steps.
     const float band = std::max(25.0f, 0.06f * (look.snow_line_m - look.lowland_top_m));
-    setUniform(ss, "ts_tint_heights", osg::Vec4(look.lowland_top_m, look.alpine_m, look.snow_line_m, band));
-    setUniform(ss, "ts_rock_cos", static_cast<float>(std::cos(osg::DegreesToRadians(double(look.rock_slope_deg)))));
+    setUniform(ss, "ts_tint_heights", osg::Uniform::FLOAT_VEC4,
+               osg::Vec4(look.lowland_top_m, look.alpine_m, look.snow_line_m, band));
+    const double rock_cos = std::cos(osg::DegreesToRadians(double(look.rock_slope_deg)));
+    setUniform(ss, "ts_rock_cos", osg::Uniform::FLOAT, static_cast<float>(rock_cos));
     // 95% fog at the visibility distance: exp(-k * v) = 0.05, k = ln(20) / v.
     const float density = look.fog_visibility_m > 0.0f ? static_cast<float>(std::log(20.0) / look.fog_visibility_m) : 0.0f;
-    setUniform(ss, "ts_fog", osg::Vec4(look.fog_colour, density));
+    setUniform(ss, "ts_fog", osg::Uniform::FLOAT_VEC4, osg::Vec4(look.fog_colour, density));
     osg::Uniform* colours = ss.getOrCreateUniform("ts_type_colors", osg::Uniform::FLOAT_VEC3, TerrainLook::kTypeColours);
     colours->setDataVariance(osg::Object::DYNAMIC);
     for (int i = 0; i < TerrainLook::kTypeColours; ++i) colours->setElement(static_cast<unsigned>(i), look.type_colours[i]);
-    setUniform(ss, "ts_type_mix", std::clamp(look.type_colour_mix, 0.0f, 1.0f));
+    setUniform(ss, "ts_type_mix", osg::Uniform::FLOAT, std::clamp(look.type_colour_mix, 0.0f, 1.0f));
 }
 
 }  // namespace terrasynth::plugin
