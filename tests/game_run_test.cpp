@@ -172,6 +172,21 @@ TEST(GameFlight, FarFromTheOriginTilesAreSeamlessAndHeightsExact) {
     EXPECT_EQ(s["tiles"]["build_failures"].get<int>(), 0);
 }
 
+TEST(GameStart, BuildsAMissingDatabaseCacheInTheWindow) {
+    if (!canShowWindows()) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
+    const std::string dir = terrasynth::test::scratchDir("game_first_start");
+    std::ofstream(dir + "/world.tsyn") << R"({"format": "terrasynth-project", "version": 1, "exemplars": [")" +
+                                              terrasynth::test::dataDir() + R"(/exemplars"], "size": [256, 256]})";
+    ASSERT_FALSE(fs::exists(dir + "/world.tsdb"));
+    const CliRun r = runInWindow("--project " + dir + "/world.tsyn --autopilot 1 --fixed-dt 0.1 --size 480x270 --stats " +
+                                 dir + "/stats.json");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_TRUE(fs::exists(dir + "/world.tsdb")) << "the database cache was not written";
+    const json s = readJson(dir + "/stats.json");
+    EXPECT_GT(s["terrain_ready_s"].get<double>(), 0.0);
+    EXPECT_GT(s["flight"]["steps"].get<int>(), 0);
+}
+
 TEST(GameExit, ClosingWhileWorkersAreBusyJoinsThemAndExitsZero) {
     if (!canShowWindows()) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
     const std::string dir = terrasynth::test::scratchDir("game_exit");
