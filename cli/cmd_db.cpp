@@ -57,7 +57,7 @@ void addDbCommand(CLI::App& app) {
                       "Common spacing; default: the coarsest exemplar's")->check(CLI::NonNegativeNumber);
     build->add_option("--threads", args->threads, "Worker threads (0 = all cores)");
     build->add_flag("-q,--quiet", args->quiet, "No progress output");
-    build->callback([args] { runDbBuild(*args); });
+    setAction(build, [args] { runDbBuild(*args); });
 }
 
 const CommandRegistration kRegistration{"db", 10, addDbCommand};

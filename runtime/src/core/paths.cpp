@@ -1,5 +1,7 @@
 #include "core/paths.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 
@@ -54,5 +56,10 @@ std::string replaceExtension(const std::string& path, const std::string& suffix)
 }
 
 std::string sidecarPathFor(const std::string& path) { return replaceExtension(path, ".json"); }
+
+bool pathExists(const std::string& path) {
+    struct stat st;
+    return ::lstat(path.c_str(), &st) == 0;
+}
 
 }  // namespace terrasynth::detail

@@ -4,7 +4,9 @@
 #include <csetjmp>
 #include <cstring>
 
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth {
 namespace {
@@ -63,9 +65,21 @@ Result<DecodedPng> decodePng(const std::string& path) {
     png_uint_32 w = 0, h = 0;
     int depth = 0, color = 0;
     png_get_IHDR(png, info, &w, &h, &depth, &color, nullptr, nullptr, nullptr);
-    if (w == 0 || h == 0 || w > 65536 || h > 65536) {
+    // Checked against the header before anything is allocated: the size limits, and what the file
+    // can hold at all (rows of filtered samples from a deflate stream no larger than the file).
+    const uint64_t pixels = static_cast<uint64_t>(w) * h;
+    const uint64_t encoded_bytes = (static_cast<uint64_t>(png_get_rowbytes(png, info)) + 1) * h;
+    if (w == 0 || h == 0 || w > static_cast<png_uint_32>(limits::kMaxImageSide) ||
+        h > static_cast<png_uint_32>(limits::kMaxImageSide) || pixels > limits::kMaxImagePixels) {
         png_destroy_read_struct(&png, &info, nullptr);
-        return Status::error(path + ": absurd PNG size " + std::to_string(w) + "x" + std::to_string(h));
+        return Status::error(path + ": PNG header claims " + std::to_string(w) + "x" + std::to_string(h) +
+                             " pixels (at most " + std::to_string(limits::kMaxImageSide) + " per side and " +
+                             std::to_string(limits::kMaxImagePixels) + " in all)");
+    }
+    if (encoded_bytes > static_cast<uint64_t>(data.size()) * limits::kMaxDeflateExpansion) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        return Status::error(path + ": PNG header claims " + std::to_string(w) + "x" + std::to_string(h) +
+                             " pixels, more than a " + std::to_string(data.size()) + "-byte file can hold (corrupt or truncated)");
     }
     if (color == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
     if (color == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
@@ -93,8 +107,8 @@ const char* describeChannels(int channels) {
     }
 }
 
-Status encodePng(const std::string& path, int width, int height, int channels, int depth,
-                 const uint8_t* big_endian_rows) {
+Result<std::string> encodePng(const std::string& path, int width, int height, int channels, int depth,
+                              const uint8_t* big_endian_rows) {
     TERRASYNTH_REQUIRE(width > 0 && height > 0 && channels >= 1 && channels <= 4, "bad PNG layout");
     std::string encoded;
     std::string error;
@@ -120,7 +134,7 @@ Status encodePng(const std::string& path, int width, int height, int channels, i
         png_write_row(png, const_cast<png_bytep>(big_endian_rows + stride * y));
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    return writeFileAtomically(path, encoded);
+    return encoded;
 }
 
 }  // namespace
@@ -148,7 +162,7 @@ Result<Image8> readPng8(const std::string& path) {
     return Image8{png.width, png.height, png.channels, std::move(png.raw)};
 }
 
-Status writePng16(const std::string& path, int width, int height, int channels,
+Status stagePng16(FileTransaction& transaction, const std::string& path, int width, int height, int channels,
                   const std::vector<uint16_t>& samples) {
     TERRASYNTH_REQUIRE(samples.size() == static_cast<size_t>(width) * height * channels, "sample count");
     std::vector<uint8_t> big_endian(samples.size() * 2);
@@ -156,13 +170,31 @@ Status writePng16(const std::string& path, int width, int height, int channels,
         big_endian[2 * i] = static_cast<uint8_t>(samples[i] >> 8);
         big_endian[2 * i + 1] = static_cast<uint8_t>(samples[i] & 0xff);
     }
-    return encodePng(path, width, height, channels, 16, big_endian.data());
+    auto encoded = encodePng(path, width, height, channels, 16, big_endian.data());
+    if (!encoded) return encoded.status();
+    return transaction.stage(path, encoded.value());
+}
+
+Status stagePng8(FileTransaction& transaction, const std::string& path, int width, int height, int channels,
+                 const std::vector<uint8_t>& samples) {
+    TERRASYNTH_REQUIRE(samples.size() == static_cast<size_t>(width) * height * channels, "sample count");
+    auto encoded = encodePng(path, width, height, channels, 8, samples.data());
+    if (!encoded) return encoded.status();
+    return transaction.stage(path, encoded.value());
+}
+
+Status writePng16(const std::string& path, int width, int height, int channels,
+                  const std::vector<uint16_t>& samples) {
+    FileTransaction transaction;
+    if (Status s = stagePng16(transaction, path, width, height, channels, samples); !s) return s;
+    return transaction.commit();
 }
 
 Status writePng8(const std::string& path, int width, int height, int channels,
                  const std::vector<uint8_t>& samples) {
-    TERRASYNTH_REQUIRE(samples.size() == static_cast<size_t>(width) * height * channels, "sample count");
-    return encodePng(path, width, height, channels, 8, samples.data());
+    FileTransaction transaction;
+    if (Status s = stagePng8(transaction, path, width, height, channels, samples); !s) return s;
+    return transaction.commit();
 }
 
 }  // namespace terrasynth
