@@ -52,13 +52,20 @@ constexpr int kMaxCurveWidgets = 1000;     // per curve
 constexpr double kMaxTotalCourseLengthPx = double(1 << 20);
 // Crossings between courses (each pins a junction, s3): beyond this the courses are a scribble.
 constexpr int kMaxJunctions = 4096;
-constexpr int kMaxStrokes = 10000;             // type and freeze brush strokes, together
-constexpr int kMaxStrokePoints = 100000;       // points of all strokes together
+constexpr int kMaxStrokes = 10000;             // type strokes, and freeze strokes, each
+constexpr int kMaxStrokePoints = 100000;       // per stroke
+// Work of painting one stroke (terrasynth::strokePaintCost: brush dabs that reach the extent times
+// the rows they cover, plus the extent): about a second at the limit.
+constexpr uint64_t kMaxStrokePaintCost = uint64_t(1) << 30;
 constexpr int kMaxPastes = 256;
 constexpr int kMaxPastePolygonPoints = 10000;  // per paste source polygon
 
 // ---- Layers (docs/layers.md) ----
 constexpr int kMaxLayers = 1000;     // edit layers, counting every group's children
 constexpr int kMaxGroupDepth = 16;   // groups inside groups
+constexpr int kMaxRidgePoints = 10000;
+// Pixel visits of one ridge (each segment's reach over the grid; terrasynth::ridgeReliefCost), and
+// of one perspective stroke's ridge: a few seconds at the limit.
+constexpr uint64_t kMaxRidgeCost = uint64_t(1) << 31;
 
 }  // namespace terrasynth::limits

@@ -3,6 +3,7 @@
 #include "core/json_reader.h"
 #include "core/paths.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 #include <cmath>
 #include <functional>
@@ -420,7 +421,29 @@ Result<LayerStack> layers::parseLayerStackJson(const json& layers, const std::st
         if (!layer) return layer.status();
         stack.layers.push_back(std::move(*layer));
     }
+    if (Status s = layers::checkStackSize(stack.layers); !s) return s;
     return stack;
+}
+
+// Evaluating a group recombines everything below it, so the cost grows with the number of layers
+// and the depth of nesting: both are bounded (limits.h).
+Status layers::checkStackSize(const std::vector<EditLayer>& layers) {
+    size_t count = 0;
+    std::function<Status(const std::vector<EditLayer>&, int, const std::string&)> visit =
+        [&](const std::vector<EditLayer>& list, int depth, const std::string& where) -> Status {
+        for (size_t i = 0; i < list.size(); ++i) {
+            if (++count > static_cast<size_t>(limits::kMaxLayers))
+                return Status::error("layers: more than " + std::to_string(limits::kMaxLayers) + " layers (groups' included)");
+            const auto* group = std::get_if<GroupParams>(&list[i].tool);
+            if (!group) continue;
+            const std::string inner = where + "[" + std::to_string(i) + "].layers";
+            if (depth + 1 > limits::kMaxGroupDepth)
+                return Status::error(inner + ": groups nest more than " + std::to_string(limits::kMaxGroupDepth) + " deep");
+            if (Status s = visit(group->children, depth + 1, inner); !s) return s;
+        }
+        return Status::ok();
+    };
+    return visit(layers, 0, "layers");
 }
 
 json layers::layerStackJson(const LayerStack& stack) {
@@ -431,18 +454,19 @@ json layers::layerStackJson(const LayerStack& stack) {
 }
 
 Result<LayerStack> parseLayerStack(const std::string& layers_json, const std::string& base_dir) {
-    const json layers = json::parse(layers_json, nullptr, /*allow_exceptions=*/false);
-    if (layers.is_discarded()) return Status::error("layers: malformed JSON");
-    return layers::parseLayerStackJson(layers, base_dir);
+    auto layers = detail::parseJson(layers_json, "layers");
+    if (!layers) return layers.status();
+    return layers::parseLayerStackJson(*layers, base_dir);
 }
 
-std::string layerStackToJson(const LayerStack& stack) { return layers::layerStackJson(stack).dump(); }
+std::string layerStackToJson(const LayerStack& stack) { return detail::dumpJson(layers::layerStackJson(stack)); }
 
 Result<LayerStack> readLayerStack(const std::string& path) {
-    auto text = readFileBytes(path);
+    auto text = readFileBytes(path, limits::kMaxJsonBytes);
     if (!text) return text.status();
-    const json doc = json::parse(text.value(), nullptr, /*allow_exceptions=*/false);
-    if (doc.is_discarded()) return Status::error(path + ": malformed JSON");
+    auto parsed = detail::parseJson(text.value(), path);
+    if (!parsed) return parsed.status();
+    const json& doc = *parsed;
     if (!doc.is_array() && !doc.is_object()) return Status::error(path + ": expected a project object or a layers array");
     const json layers = doc.is_array() ? doc : doc.value("layers", json::array());
     auto stack = layers::parseLayerStackJson(layers, detail::folderOf(path));
