@@ -1,6 +1,8 @@
 // The worker-side tile job: heights, mesh, detached OSG node.
 #include "terrasynth_plugin/tile_builder.h"
 
+#include "terrasynth/guard.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -49,8 +51,10 @@ PixelWindow tileReadWindow(const TileKey& key, const TileBuildSettings& s) {
     return {w.x - apron, w.y - apron, w.width + 2 * apron, w.height + 2 * apron};
 }
 
-TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
-                    const Heightfield* parent_samples) {
+namespace {
+
+TileBuild buildTileUnguarded(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
+                             const Heightfield* parent_samples) {
     TERRASYNTH_REQUIRE(s.mesh_step >= 1 && s.layout.tile_size % s.mesh_step == 0,
                        "tile_size must be a positive multiple of mesh_step");
     TERRASYNTH_REQUIRE(!s.geomorph || (s.layout.tile_size / s.mesh_step) % 2 == 0,
@@ -127,6 +131,20 @@ TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBu
                 std::max(range.max, coarse_range.max));
     out.osg_ms = msSince(t0);
     return out;
+}
+
+}  // namespace
+
+TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
+                    const Heightfield* parent_samples) {
+    // Tiles build on worker threads: anything thrown (out of memory, OSG) becomes the tile's error.
+    return invokeGuarded([&] { return buildTileUnguarded(source, key, s, parent_samples); },
+                         [&](const std::string& why) {
+                             TileBuild failed;
+                             failed.key = key;
+                             failed.status = Status::error(keyName(key) + ": " + why);
+                             return failed;
+                         });
 }
 
 }  // namespace terrasynth::plugin

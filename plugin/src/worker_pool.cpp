@@ -1,5 +1,9 @@
 #include "terrasynth_plugin/worker_pool.h"
 
+#include <cstdio>
+
+#include "terrasynth/guard.h"
+
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -75,7 +79,9 @@ void WorkerPool::workerLoop() {
         queue_.pop_back();
         ++running_;
         lock.unlock();
-        task.run();
+        // An exception must not end the worker (std::terminate); tasks report their own errors.
+        invokeGuarded([&] { task.run(); },
+                      [](const std::string& why) { std::fprintf(stderr, "terrasynth worker: %s\n", why.c_str()); });
         lock.lock();
         --running_;
         if (queue_.empty() && running_ == 0) idle_.notify_all();

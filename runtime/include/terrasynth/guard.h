@@ -15,11 +15,14 @@
 //   // An editor button: the message lands where the editor shows errors.
 //   Status s = terrasynth::guarded("save", [&] { return session.save(); });
 //
-// Threading: all of it is re-entrant. Exceptions must not cross threads: wrap each worker's body too.
+// Threading: all of it is re-entrant. An exception leaving a std::thread calls std::terminate, so
+// thread pools run each worker's body through FirstException and rethrow on the thread that waits
+// for them, where the entry point's guard sees it.
 #pragma once
 
 #include <cstdio>
 #include <exception>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -57,5 +60,35 @@ int runGuarded(const char* program, Body&& body) {
         return 1;
     });
 }
+
+// Keeps the first exception thrown by any worker of a pool:
+//   FirstException first;
+//   for (...) threads.emplace_back([&] { first.run([&] { work(); }); });
+//   for (auto& t : threads) t.join();
+//   first.rethrow();  // on the waiting thread, if any worker threw
+class FirstException {
+public:
+    template <class Body>
+    void run(Body&& body) noexcept {
+        try {
+            std::forward<Body>(body)();
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (!first_) first_ = std::current_exception();
+        }
+    }
+    bool caught() const {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return static_cast<bool>(first_);
+    }
+    void rethrow() const {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (first_) std::rethrow_exception(first_);
+    }
+
+private:
+    mutable std::mutex mutex_;
+    std::exception_ptr first_;
+};
 
 }  // namespace terrasynth

@@ -124,7 +124,7 @@ Status FileTransaction::commit() {
         }
     };
     for (size_t i = 0; i < staged_.size(); ++i) {
-        const Staged& s = staged_[i];
+        const Staged s = staged_[i];  // a copy: discard() below empties staged_
         std::string backup;
         if (exists(s.path)) {
             backup = s.path + ".bak" + uniqueSuffix();

@@ -141,6 +141,8 @@ Status checkLevel(const ExemplarDatabase& db, size_t index) {
         return x >= r.x + kInteriorMargin && y >= r.y + kInteriorMargin && x < r.x + r.width - kInteriorMargin &&
                y < r.y + r.height - kInteriorMargin;
     };
+    // Rectangles first (their bounds are what the pixel checks below rely on), then which pixels
+    // name which exemplar, then what the pixels inside each rectangle hold.
     for (size_t e = 0; e < l.rects.size(); ++e) {
         const AtlasRect& r = l.rects[e];
         const bool empty = r.width == 0 && r.height == 0;
@@ -148,26 +150,29 @@ Status checkLevel(const ExemplarDatabase& db, size_t index) {
             int64_t(r.x) + r.width > l.width || int64_t(r.y) + r.height > l.height)
             return Status::error(where + "exemplar " + std::to_string(e) + " rectangle is outside the atlas or smaller than " +
                                  std::to_string(kMinimumSide) + "x" + std::to_string(kMinimumSide));
-        if (index + 1 < db.levels.size() && empty) {
-            const AtlasRect& coarser = db.levels[index + 1].rects.size() > e ? db.levels[index + 1].rects[e] : r;
-            if (coarser.width > 0) return Status::error(where + "exemplar " + std::to_string(e) + " is missing below a level that has it");
-        }
+        const bool coarser_has_it = index + 1 < db.levels.size() && db.levels[index + 1].rects.size() > e &&
+                                    db.levels[index + 1].rects[e].width > 0;
+        if (empty && coarser_has_it)
+            return Status::error(where + "exemplar " + std::to_string(e) + " is missing below a level that has it");
+    }
+    for (size_t p = 0; p < n; ++p)
+        if (l.exemplar[p] != kNoExemplar && (l.exemplar[p] >= l.rects.size() || l.rects[l.exemplar[p]].width == 0))
+            return Status::error(where + "a pixel names a missing exemplar");
+    for (uint32_t q : l.similar)
+        if (q >= n) return Status::error(where + "similarity index out of range");
+    for (size_t e = 0; e < l.rects.size(); ++e) {
+        const AtlasRect& r = l.rects[e];
         for (int y = r.y; y < r.y + r.height; ++y)
             for (int x = r.x; x < r.x + r.width; ++x) {
                 const size_t p = static_cast<size_t>(y) * l.width + x;
                 if (l.exemplar[p] != e || l.type[p] >= db.type_names.size())
                     return Status::error(where + "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                                          ") inside exemplar " + std::to_string(e) + " names another exemplar or an unknown type");
-                if (l.similar[p] >= n || !interior(l.similar[p]))
+                if (!interior(l.similar[p]))
                     return Status::error(where + "the similarity table points outside the exemplars at (" + std::to_string(x) +
                                          ", " + std::to_string(y) + ")");
             }
     }
-    for (uint32_t q : l.similar)
-        if (q >= n) return Status::error(where + "similarity index out of range");
-    for (size_t p = 0; p < n; ++p)
-        if (l.exemplar[p] != kNoExemplar && (l.exemplar[p] >= l.rects.size() || l.rects[l.exemplar[p]].width == 0))
-            return Status::error(where + "a pixel names a missing exemplar");
     if (l.type_seeds.size() > db.type_names.size()) return Status::error(where + "more seed lists than types");
     size_t seeds = 0;
     for (const auto& list : l.type_seeds) {

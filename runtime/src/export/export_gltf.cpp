@@ -52,22 +52,12 @@ Status parallelFor(int n, int threads, const std::function<Status(int)>& body) {
             }
         }
     };
-    // Exceptions must not leave a worker thread (std::terminate): each becomes the error.
-    auto guarded_worker = [&] {
-        Status s = guarded("export worker", [&] {
-            worker();
-            return Status::ok();
-        });
-        if (!s) {
-            std::lock_guard<std::mutex> lock(mutex);
-            if (first) first = s;
-            next = n;
-        }
-    };
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(guarded_worker);
-    guarded_worker();
+    FirstException thrown;  // rethrown here, never std::terminate in a worker
+    for (int t = 1; t < threads; ++t) pool.emplace_back([&] { thrown.run(worker); });
+    thrown.run(worker);
     for (std::thread& t : pool) t.join();
+    thrown.rethrow();
     return first;
 }
 
