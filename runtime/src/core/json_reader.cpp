@@ -42,8 +42,9 @@ Result<json> parseJson(const std::string& text, const std::string& where) {
         return Status::error(where + ": JSON nested more than " + std::to_string(limits::kMaxJsonDepth) + " levels deep");
     try {
         return json::parse(text);
-    } catch (const json::parse_error& e) {
-        // what() is "[json.exception.parse_error.101] parse error at line 1, column 2: ..."
+    } catch (const json::exception& e) {
+        // A syntax error, or a number out of double's range (out_of_range.406); what() is
+        // "[json.exception.parse_error.101] parse error at line 1, column 2: ...".
         std::string why = e.what();
         const size_t at = why.find("] ");
         if (at != std::string::npos) why = why.substr(at + 2);

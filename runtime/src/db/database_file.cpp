@@ -39,7 +39,7 @@ public:
     template <class T>
     void array(const std::vector<T>& v) {
         pod<uint64_t>(v.size());
-        bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+        if (!v.empty()) bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
     }
     std::string& bytes() { return bytes_; }
 
@@ -69,7 +69,7 @@ public:
         uint64_t n = 0;
         if (!pod(&n) || n > (size_ - offset_) / sizeof(T)) return false;
         v->resize(n);
-        std::memcpy(v->data(), data_ + offset_, n * sizeof(T));
+        if (n > 0) std::memcpy(v->data(), data_ + offset_, n * sizeof(T));  // an empty vector's data() may be null
         offset_ += n * sizeof(T);
         return true;
     }

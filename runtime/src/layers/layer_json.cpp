@@ -168,11 +168,12 @@ ToolParams readHoleFill(Reader& r) {
         if (!c->is_array() || c->empty()) r.fail("choices", "must be a non-empty array of picks 0..2");
         else
             for (const json& e : *c) {
-                if (!e.is_number_integer() || e.get<int>() < 0 || e.get<int>() > 2) {
+                // Read as 64 bits: 2^32 + 1 must not wrap into a valid pick.
+                if (!e.is_number_integer() || e.get<int64_t>() < 0 || e.get<int64_t>() > 2) {
                     r.fail("choices", "each pick must be 0, 1 or 2");
                     break;
                 }
-                p.choices.push_back(e.get<int>());
+                p.choices.push_back(static_cast<int>(e.get<int64_t>()));
             }
     }
     return p;
@@ -381,7 +382,8 @@ Result<LayerStack> layers::parseLayerStackJson(const json& layers, const std::st
     if (layers.is_null()) return stack;
     if (!layers.is_array()) return Status::error("layers: must be an array");
     size_t first = 0;
-    if (!layers.empty() && layers[0].is_object() && layers[0].value("type", "") == "base") {
+    // Compared as JSON: value("type", "") would throw on a non-string type.
+    if (!layers.empty() && layers[0].is_object() && layers[0].contains("type") && layers[0]["type"] == "base") {
         first = 1;
         layers::Reader r(layers[0], "layers[0]");
         r.use("type");
