@@ -114,7 +114,9 @@ TEST(SynthHardening, IndexedJunctionPinsSumLikeEveryPin) {
     std::vector<CurveWidget> widgets;
     for (int k = 0; k < 7; ++k) widgets.push_back({k / 6.0, float(1000 + 300 * u(rng)), 0.1f, -0.2f, 20.0f, 30.0f});
     CurveProfile profile(widgets, 800.0);
-    for (int k = 0; k < 300; ++k) profile.addPin({800.0 * u(rng), 900.0 + 500.0 * u(rng), 4.0 + 60.0 * u(rng)});
+    std::vector<JunctionPin> pins;
+    for (int k = 0; k < 300; ++k) pins.push_back({800.0 * u(rng), 900.0 + 500.0 * u(rng), 4.0 + 60.0 * u(rng)});
+    profile.setPins(pins);
     for (int k = 0; k <= 4000; ++k) {
         const double s = -20.0 + 840.0 * k / 4000.0;
         ASSERT_EQ(profile.at(s).height, pinnedHeightByScan(profile, s)) << "at s = " << s;

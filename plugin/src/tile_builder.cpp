@@ -1,12 +1,12 @@
 // The worker-side tile job: heights, mesh, detached OSG node.
 #include "terrasynth_plugin/tile_builder.h"
 
-#include "terrasynth/guard.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <string>
+
+#include "terrasynth/guard.h"
 
 namespace terrasynth::plugin {
 namespace {

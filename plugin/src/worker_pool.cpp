@@ -1,15 +1,13 @@
 #include "terrasynth_plugin/worker_pool.h"
 
-#include <cstdio>
-
-#include "terrasynth/guard.h"
-
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 
+#include "terrasynth/guard.h"
 #include "terrasynth/status.h"
 
 namespace terrasynth::plugin {

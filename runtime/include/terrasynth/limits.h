@@ -51,7 +51,7 @@ constexpr int kMaxCurveWidgets = 1000;     // per curve
 // visited per synthesized level.
 constexpr double kMaxTotalCourseLengthPx = double(1 << 20);
 // Crossings between courses (each pins a junction, s3): beyond this the courses are a scribble.
-constexpr int kMaxJunctions = 4096;
+constexpr int kMaxJunctions = 16384;
 constexpr int kMaxStrokes = 10000;             // type strokes, and freeze strokes, each
 constexpr int kMaxStrokePoints = 100000;       // per stroke
 // Work of painting one stroke (terrasynth::strokePaintCost: brush dabs that reach the extent times

@@ -107,9 +107,12 @@ CrossingSearch findCrossings(const std::vector<const CourseSamples*>& courses) {
 }
 
 void pinJunctions(const std::vector<CourseCrossing>& crossings, std::vector<CurveProfile>& profiles) {
+    // Pins depend on the widgets only, never on each other: collect them, then index each profile's
+    // once (thousands of junctions must not cost an insertion each).
+    std::vector<std::vector<JunctionPin>> pins(profiles.size());
     for (const CourseCrossing& x : crossings) {
-        CurveProfile& a = profiles[x.a];
-        CurveProfile& b = profiles[x.b];
+        const CurveProfile& a = profiles[x.a];
+        const CurveProfile& b = profiles[x.b];
         double ha = 0.0, hb = 0.0;
         const bool wa = a.widgetNear(x.s_a, kJunctionWidgetSnapPx, &ha);
         const bool wb = b.widgetNear(x.s_b, kJunctionWidgetSnapPx, &hb);
@@ -120,9 +123,11 @@ void pinJunctions(const std::vector<CourseCrossing>& crossings, std::vector<Curv
         else height = 0.5 * (a.heightAt(x.s_a) + b.heightAt(x.s_b));
         const CurveProperties pa = a.widgetsAt(a.t(x.s_a)), pb = b.widgetsAt(b.t(x.s_b));
         const double blend = std::max({4.0, pa.left_reach, pa.right_reach, pb.left_reach, pb.right_reach});
-        a.addPin({x.s_a, height, blend});
-        b.addPin({x.s_b, height, blend});
+        pins[x.a].push_back({x.s_a, height, blend});
+        pins[x.b].push_back({x.s_b, height, blend});
     }
+    for (size_t k = 0; k < profiles.size(); ++k)
+        if (!pins[k].empty()) profiles[k].setPins(std::move(pins[k]));
 }
 
 }  // namespace terrasynth::synth

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace terrasynth::synth {
 namespace {
@@ -63,13 +64,17 @@ CurveProperties CurveProfile::widgetsAt(double t) const {
     return p;
 }
 
-void CurveProfile::addPin(const JunctionPin& pin) {
-    pin_base_.push_back(heightAt(pin.s));
-    const auto at = std::upper_bound(pins_by_s_.begin(), pins_by_s_.end(), pin.s,
-                                     [&](double v, size_t k) { return v < pins_[k].s; });
-    pins_by_s_.insert(at, pins_.size());
-    pins_.push_back(pin);
-    max_blend_ = std::max(max_blend_, pin.blend_px);
+void CurveProfile::setPins(std::vector<JunctionPin> pins) {
+    pins_ = std::move(pins);
+    pin_base_.clear();
+    max_blend_ = 0.0;
+    for (const JunctionPin& pin : pins_) {
+        pin_base_.push_back(heightAt(pin.s));
+        max_blend_ = std::max(max_blend_, pin.blend_px);
+    }
+    pins_by_s_.resize(pins_.size());
+    std::iota(pins_by_s_.begin(), pins_by_s_.end(), size_t(0));
+    std::stable_sort(pins_by_s_.begin(), pins_by_s_.end(), [&](size_t a, size_t b) { return pins_[a].s < pins_[b].s; });
 }
 
 CurveProperties CurveProfile::at(double s) const {

@@ -44,7 +44,8 @@ public:
     double heightAt(double s) const { return widgetsAt(t(s)).height; }
     bool widgetNear(double s, double snap_px, double* height) const;
 
-    void addPin(const JunctionPin& pin);
+    // Replaces the junction pins; at() sums their corrections in this order. O(n log n).
+    void setPins(std::vector<JunctionPin> pins);
     const std::vector<JunctionPin>& pins() const { return pins_; }
     double t(double s) const { return length_ > 0.0 ? s / length_ : 0.0; }
     double length() const { return length_; }
