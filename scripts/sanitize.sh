@@ -7,6 +7,8 @@
 #   scripts/sanitize.sh address         # ASan + UBSan only
 #   scripts/sanitize.sh thread          # TSan only
 #   SANITIZE_TESTS='^(Core|Db)' scripts/sanitize.sh address   # a ctest -R subset
+#   SANITIZE_SCOPE=runtime scripts/sanitize.sh address   # runtime and CLI only: no plugin, no
+#                                                        # editor (what CI runs, see scripts/test.sh)
 #
 # PoCL (the OpenCL runtime the cl_ tests use) is not instrumented: its threads and LLVM allocations
 # are outside our code, so leak checking skips it and TSan ignores races inside it (tsan.supp).
@@ -18,7 +20,10 @@ jobs=${JOBS:-2}
 run() {
   local name=$1 sanitizers=$2 dir=build-$1
   local start=$SECONDS
-  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTERRASYNTH_SANITIZE="$sanitizers" -DTERRASYNTH_BUILD_BENCH=OFF >/dev/null
+  local scope=()
+  [ "${SANITIZE_SCOPE:-all}" = runtime ] && scope=(-DTERRASYNTH_BUILD_PLUGIN=OFF -DTERRASYNTH_BUILD_EDITOR=OFF)
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTERRASYNTH_SANITIZE="$sanitizers" \
+    -DTERRASYNTH_BUILD_BENCH=OFF "${scope[@]}" >/dev/null
   cmake --build "$dir" -j"$jobs"
   local built=$SECONDS
   export POCL_CACHE_DIR="$PWD/$dir/pocl_cache"

@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "core/paths.h"
+#include "terrasynth/guard.h"
 
 namespace terrasynth {
 namespace {
@@ -76,7 +77,8 @@ Status FileTransaction::stageWith(const std::string& path,
     TERRASYNTH_REQUIRE(!done_, "FileTransaction::stageWith after commit");
     if (!failed_) return failed_;
     const std::string temp = path + ".tmp" + uniqueSuffix();
-    Status s = write(temp);
+    // Whatever the writer throws (an encoder's exception) becomes the error, and its temporary goes.
+    Status s = guarded(path, [&] { return write(temp); });
     if (s && !syncFile(temp)) s = Status::error(path + ": write failed (disk full?)");
     if (!s) {
         std::remove(temp.c_str());
