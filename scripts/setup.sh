@@ -12,6 +12,9 @@ packages=(
   xvfb xauth libgl1-mesa-dri
   python3-numpy
   slurm-wlm munge
+  # Hardening (issue 20): libFuzzer (clang and its runtime, scripts/fuzz.sh), valgrind
+  # (scripts/valgrind_databases.sh), PIL for regenerating fuzz seeds (tests/fuzz/make_seeds.py).
+  clang libclang-rt-14-dev valgrind python3-pil
 )
 # The glTF validator runs on Node.js; machines that already have node/npm (e.g. from NodeSource)
 # keep theirs, since Debian's npm package conflicts with it.

@@ -12,6 +12,7 @@
 #include <osgDB/Registry>
 
 #include "terrasynth/gltf_export.h"
+#include "terrasynth/guard.h"
 #include "terrasynth/project.h"
 #include "terrasynth/terrain.h"
 #include "terrasynth_plugin/plugin_options.h"
@@ -96,13 +97,9 @@ public:
     }
 
     ReadResult readNode(const std::string& file, const Options* options) const override {
-        try {
-            return read(file, options);
-        } catch (const std::exception& e) {
-            return ReadResult(std::string("terrasynth: ") + file + ": " + e.what());
-        } catch (...) {
-            return ReadResult(std::string("terrasynth: ") + file + ": unknown error");
-        }
+        // osgDB calls in from any thread: nothing may escape (terrasynth/guard.h).
+        return invokeGuarded([&] { return read(file, options); },
+                             [&](const std::string& why) { return ReadResult("terrasynth: " + file + ": " + why); });
     }
 
 private:

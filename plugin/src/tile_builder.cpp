@@ -7,6 +7,8 @@
 #include <cstring>
 #include <string>
 
+#include "terrasynth/guard.h"
+
 namespace terrasynth::plugin {
 namespace {
 
@@ -62,8 +64,10 @@ PixelWindow tileReadWindow(const TileKey& key, const TileBuildSettings& s) {
     return {w.x - apron, w.y - apron, w.width + 2 * apron, w.height + 2 * apron};
 }
 
-TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
-                    const Heightfield* parent_samples, const TypeSource* types) {
+namespace {
+
+TileBuild buildTileUnguarded(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
+                             const Heightfield* parent_samples, const TypeSource* types) {
     TERRASYNTH_REQUIRE(s.mesh_step >= 1 && s.layout.tile_size % s.mesh_step == 0,
                        "tile_size must be a positive multiple of mesh_step");
     TERRASYNTH_REQUIRE(!s.geomorph || (s.layout.tile_size / s.mesh_step) % 2 == 0,
@@ -159,6 +163,20 @@ TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBu
                 std::max(range.max, coarse_range.max));
     out.osg_ms = msSince(t0);
     return out;
+}
+
+}  // namespace
+
+TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
+                    const Heightfield* parent_samples, const TypeSource* types) {
+    // Tiles build on worker threads: anything thrown (out of memory, OSG) becomes the tile's error.
+    return invokeGuarded([&] { return buildTileUnguarded(source, key, s, parent_samples, types); },
+                         [&](const std::string& why) {
+                             TileBuild failed;
+                             failed.key = key;
+                             failed.status = Status::error(keyName(key) + ": " + why);
+                             return failed;
+                         });
 }
 
 }  // namespace terrasynth::plugin

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "export/export_internal.h"
+#include "terrasynth/guard.h"
 
 namespace terrasynth::export_detail {
 
@@ -23,9 +24,11 @@ Status parallelFor(int n, int threads, const std::function<Status(int)>& body) {
         }
     };
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
+    FirstException thrown;  // rethrown here, never std::terminate in a worker
+    for (int t = 1; t < threads; ++t) pool.emplace_back([&] { thrown.run(worker); });
+    thrown.run(worker);
     for (std::thread& t : pool) t.join();
+    thrown.rethrow();
     return first;
 }
 

@@ -1,5 +1,5 @@
 // One tile of a bake as a .glb: the mesher's grid with a skirt, packed and modelled by the exporter's
-// steps (packTile, buildModel, writeGltfFiles), placed in the world by the root node, and described in
+// steps (packTile, buildModel, stageGltfFiles), placed in the world by the root node, and described in
 // the root node's extras for the merge.
 #include <tiny_gltf.h>
 
@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "export/export_internal.h"
+#include "terrasynth/file_transaction.h"
 #include "export/tileset_plan.h"
 
 namespace terrasynth::bake_detail {
@@ -111,7 +112,9 @@ Result<TileRecord> writeTileGlb(const std::string& path, const BakeTree& tree, c
     root_node.extras = tinygltf::Value(extras);
 
     size_t json_bytes = 0, file_bytes = 0;
-    if (Status s = writeGltfFiles(path, model, layout, &json_bytes, &file_bytes); !s) return s;
+    FileTransaction transaction;
+    if (Status s = stageGltfFiles(transaction, path, model, layout, &json_bytes, &file_bytes); !s) return s;
+    if (Status s = transaction.commit(); !s) return s;
     record.file_bytes = static_cast<int64_t>(file_bytes);
     return record;
 }

@@ -2,6 +2,7 @@
 // correction kernel consumes. Implemented in curve_field.cpp.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "synth/synthesis_plan.h"
@@ -18,5 +19,11 @@ namespace terrasynth::synth {
 // min(reach, kPointLocalisation * 2^level) as for points. `sums` must have 3 * region.pixels() floats.
 void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region,
                       double meters_per_pixel0, std::vector<float>& sums);
+
+// The cost limits of curve constraints (limits.h): counts, coordinates within
+// +-limits::kMaxWindowOrigin, the total course length and the junction count. Cheap checks first;
+// the junctions are found on the cached samplings accumulateCurves uses. `where` prefixes messages
+// ("constraints.curves").
+Status checkCurveLimits(const std::vector<CurveConstraint>& curves, const std::string& where);
 
 }  // namespace terrasynth::synth
