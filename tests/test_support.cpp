@@ -59,6 +59,32 @@ Heightfield loadExemplarField(const std::string& stem) {
     return exemplar->field;
 }
 
+bool haveProgram(const std::string& name) {
+    return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+std::string xvfbPrefix() {
+    const char* display = std::getenv("DISPLAY");
+    if (display && *display) return "";
+    return "xvfb-run -a -s '-screen 0 1280x720x24' ";
+}
+
+int rerunUnderXvfbUnlessDisplay(const std::string& gtest_filter) {
+    const char* display = std::getenv("DISPLAY");
+    if (display && *display) return kHaveDisplay;
+    if (std::getenv("TERRASYNTH_RENDER_CHILD")) {
+        ADD_FAILURE() << "xvfb-run gave no DISPLAY";
+        return 1;
+    }
+    if (!haveProgram("xvfb-run")) return kNoXvfb;
+    char self[4096] = {};
+    if (::readlink("/proc/self/exe", self, sizeof self - 1) <= 0) return 1;
+    const std::string cmd = "TERRASYNTH_RENDER_CHILD=1 " + xvfbPrefix() + "'" + self +
+                            "' --gtest_filter='" + gtest_filter + "'";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
 Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h) {
     Heightfield out(w, h, field.meters_per_pixel_x);
     out.meters_per_pixel_y = field.meters_per_pixel_y;

@@ -24,6 +24,17 @@ Heightfield loadExemplarField(const std::string& stem);
 // Crop of a field (x0,y0,w,h), same spacing.
 Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h);
 
+// Tests that open windows (Mesa llvmpipe under Xvfb). With DISPLAY set this returns kHaveDisplay:
+// run the test body here. Otherwise the running test binary re-runs itself, filtered to
+// `gtest_filter`, under `xvfb-run -a` (screen 1280x720x24) and the child's exit code is returned
+// (its output goes to ours); kNoXvfb when xvfb-run is missing. A child without a display fails.
+constexpr int kHaveDisplay = -1000, kNoXvfb = -1001;
+int rerunUnderXvfbUnlessDisplay(const std::string& gtest_filter);
+// "xvfb-run -a -s '-screen 0 1280x720x24' " to prefix a command that opens a window, or "" when
+// DISPLAY is already set.
+std::string xvfbPrefix();
+bool haveProgram(const std::string& name);
+
 }  // namespace terrasynth::test
 
 #include <memory>
