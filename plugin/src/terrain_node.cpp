@@ -169,12 +169,24 @@ bool TerrainNode::touches(const TileKey& key, const PixelWindow& r) const {
     return x0 < r.x + r.width && r.x < x1 && y0 < r.y + r.height && r.y < y1;
 }
 
-void TerrainNode::invalidate(const PixelWindow& region, int64_t margin_px) {
+uint64_t TerrainNode::invalidate(const PixelWindow& region, int64_t margin_px) {
     const PixelWindow widened{region.x - margin_px, region.y - margin_px,
                               static_cast<int>(region.width + 2 * margin_px),
                               static_cast<int>(region.height + 2 * margin_px)};
     std::lock_guard<std::mutex> lock(mutex_);
     invalidateLocked({++generation_, widened, false});
+    return generation_;
+}
+
+size_t TerrainNode::tilesAwaitingRebuild(uint64_t generation) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    size_t n = 0;
+    for (const auto& [key, tile] : tiles_) {
+        // A dirty tile built at or after `generation` already shows that edit (a later one marked it).
+        const bool in_view = cull_frame_ != ~0u && tile.last_used_frame + 1 >= cull_frame_;
+        n += tile.dirty && tile.generation < generation && in_view;
+    }
+    return n;
 }
 
 void TerrainNode::invalidateAll() {

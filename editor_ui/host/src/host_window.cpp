@@ -1,7 +1,9 @@
 // HostWindow: the GLFW window, the embedded single-threaded viewer, ImGui, input routing, timing.
 #include "terrasynth_host/host_window.h"
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <atomic>
 #include <chrono>
 
@@ -59,6 +61,9 @@ struct HostWindow::Impl {
     double events_ms = 0.0;
     std::string screenshot_path;
     bool screenshot_with_overlay = false;
+    std::vector<ImageUpload> uploads;  // image pixels waiting for the overlay step
+    std::vector<unsigned> doomed;      // image textures to delete there
+    std::vector<unsigned> images;      // live image textures
 
     static Impl& of(GLFWwindow* w) { return *static_cast<Impl*>(glfwGetWindowUserPointer(w)); }
     void push(InputEvent e) { pending.push_back(e); }
@@ -202,6 +207,7 @@ Result<std::unique_ptr<HostWindow>> HostWindow::create(const HostOptions& o) {
     impl.window = window;
     glfwMakeContextCurrent(window);
     glfwSwapInterval(o.vsync ? 1 : 0);
+    if (const GLubyte* renderer = glGetString(GL_RENDERER)) host->gl_renderer_ = reinterpret_cast<const char*>(renderer);
     glfwSetWindowUserPointer(window, &impl);
     glfwGetFramebufferSize(window, &host->width_, &host->height_);
 
@@ -245,6 +251,10 @@ Result<std::unique_ptr<HostWindow>> HostWindow::create(const HostOptions& o) {
 HostWindow::~HostWindow() {
     if (!impl_->window) return;
     glfwMakeContextCurrent(impl_->window);
+    for (unsigned name : impl_->images) {
+        const GLuint n = name;
+        glDeleteTextures(1, &n);
+    }
     if (impl_->imgui_gl) ImGui_ImplOpenGL2_Shutdown();
     if (impl_->imgui_glfw) ImGui_ImplGlfw_Shutdown();
     if (ImGui::GetCurrentContext()) ImGui::DestroyContext();
@@ -330,7 +340,7 @@ FrameTiming HostWindow::endFrame(double simulation_time_s) {
     if (!impl.screenshot_path.empty() && !impl.screenshot_with_overlay) screenshot();
 
     const auto overlay_start = Clock::now();
-    drawImGuiOverOsg(*impl.embedded->getState());
+    drawImGuiOverOsg(*impl.embedded->getState(), impl.uploads, impl.doomed);
     if (options_.finish_gl_for_timing) glFinish();
     t.overlay_ms = msBetween(overlay_start, Clock::now());
 
@@ -350,6 +360,31 @@ bool HostWindow::closeRequested() const { return impl_->close_requested || glfwW
 void HostWindow::requestScreenshot(const std::string& png_path, bool with_overlay) {
     impl_->screenshot_path = png_path;
     impl_->screenshot_with_overlay = with_overlay;
+}
+
+ImTextureID HostWindow::uploadImage(const std::vector<uint8_t>& rgba, int width, int height, ImTextureID previous) {
+    TERRASYNTH_REQUIRE(width > 0 && height > 0 && rgba.size() == static_cast<size_t>(width) * height * 4,
+                       "an image is width x height RGBA8 pixels");
+    Impl& impl = *impl_;
+    auto name = static_cast<unsigned>(reinterpret_cast<uintptr_t>(previous));
+    if (std::find(impl.images.begin(), impl.images.end(), name) == impl.images.end()) {
+        name = newImageTexture();
+        impl.images.push_back(name);
+    }
+    impl.uploads.push_back({name, width, height, rgba});
+    return reinterpret_cast<ImTextureID>(static_cast<uintptr_t>(name));
+}
+
+void HostWindow::releaseImage(ImTextureID image) {
+    Impl& impl = *impl_;
+    const auto name = static_cast<unsigned>(reinterpret_cast<uintptr_t>(image));
+    auto it = std::find(impl.images.begin(), impl.images.end(), name);
+    if (it == impl.images.end()) return;
+    impl.images.erase(it);
+    impl.uploads.erase(std::remove_if(impl.uploads.begin(), impl.uploads.end(),
+                                      [name](const ImageUpload& u) { return u.texture == name; }),
+                       impl.uploads.end());
+    impl.doomed.push_back(name);
 }
 
 namespace {

@@ -140,8 +140,13 @@ public:
     // Marks every tile whose samples (apron included) may change when the level-0 heights inside
     // `region` change, widened by `margin_px` level-0 pixels for filters that spread an edit.
     // Marked tiles still drawn are rebuilt and swapped when their heights differ; others are dropped.
-    void invalidate(const PixelWindow& region, int64_t margin_px = 0);
+    // Returns the invalidation's generation (increasing), for tilesAwaitingRebuild().
+    uint64_t invalidate(const PixelWindow& region, int64_t margin_px = 0);
     void invalidateAll();
+    // Tiles used by the last cull whose heights predate invalidation `generation`: marked by it (or
+    // an earlier one) and not yet rebuilt. 0 = everything that invalidation changed in view has been
+    // swapped in (or found unchanged) by an UPDATE, e.g. for an editor's edit-to-screen latency.
+    size_t tilesAwaitingRebuild(uint64_t generation) const;
     // Replaces the height source (e.g. after an edit); call invalidate*() for the changed area.
     void setHeightSource(HeightSource source);
 

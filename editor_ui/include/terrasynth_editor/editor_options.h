@@ -1,0 +1,40 @@
+// terrasynth_editor/editor_options.h: the editor's command line and where its autosave lives.
+//
+//   terrasynth_editor PROJECT.tsyn [--script FILE] [--stats OUT.json] [--recover] [--size WxH]
+//                     [--backend opencl|reference] [--clear-color R,G,B] [--ui-scale S]
+//
+// Exit codes: 0 done, 1 the editor failed (no window, a failed save or screenshot in a script),
+// 2 bad input (options, project, script), which is reported before any window opens.
+#pragma once
+
+#include <string>
+
+#include "terrasynth/status.h"
+#include "terrasynth/synthesizer.h"
+
+namespace terrasynth::editor {
+
+struct EditorOptions {
+    std::string project;
+    std::string script;  // "" = interactive
+    std::string stats;   // "" = no report
+    bool recover = false;
+    int width = 1280, height = 720;
+    SynthesizerOptions synthesizer;
+    float clear_color[3] = {0.62f, 0.72f, 0.85f};
+    float ui_scale = 1.0f;
+    double autosave_interval_s = 1.0;
+};
+
+constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2;
+
+// Parses argv; on --help, `help` receives the usage text and the result is an ok empty project.
+// Errors name the option.
+Result<EditorOptions> parseEditorOptions(int argc, const char* const* argv, std::string* help = nullptr);
+
+// "<dir>/world.tsyn" -> "<dir>/world.autosave.tsyn".
+std::string autosavePath(const std::string& project_path);
+// The autosave of `project_path` when it exists and was written after the project; "" otherwise.
+std::string newerAutosave(const std::string& project_path);
+
+}  // namespace terrasynth::editor
