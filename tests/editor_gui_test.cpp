@@ -258,8 +258,8 @@ drag 420 250 720 300 12
 settle
 tool paint
 set paint.type )" + type + R"(
-set brush.radius 8
-drag 450 470 620 470 8
+set brush.radius 24
+drag 430 480 640 480 8
 settle
 tool freeze
 set brush.radius 6

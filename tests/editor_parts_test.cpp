@@ -25,7 +25,7 @@ TEST(EditorScript, ParsesEveryCommandAndNamesTheLineOfAnError) {
         "view aerial 512 512 60000   # trailing comment\n"
         "view free 512 512 9000 30 40\n"
         "tool point\n"
-        "set point.raise 250\n"
+        "set paint.type extreme alpine\n"
         "move 640 360\n"
         "click\n"
         "drag 640 360 690 360 12\n"
@@ -52,6 +52,7 @@ TEST(EditorScript, ParsesEveryCommandAndNamesTheLineOfAnError) {
     EXPECT_EQ(c[7].numbers, (std::vector<double>{640, 360, 690, 360, 12}));
     EXPECT_EQ(c[8].args[0], "base.low");
     EXPECT_EQ(c[8].numbers, (std::vector<double>{10, 0}));
+    EXPECT_EQ(c[4].args, (std::vector<std::string>{"paint.type", "extreme alpine"}));
     EXPECT_EQ(c[15].args[0], "radius must");
     EXPECT_EQ(c[17].args[0], "hello world");
 

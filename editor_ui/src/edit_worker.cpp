@@ -284,9 +284,10 @@ void EditWorker::runOne(Queued& q) {
             // Source first, then the invalidation (see the top of edit_worker.h). The changed window
             // is exact (where level-0 heights differ) and tiles read their apron and coarse blocks
             // through it, so no margin is needed.
+            const uint64_t marked_before = terrain->stats().tiles_invalidated;
             terrain->setHeightSource(session_->heightSource());
             result.generation = terrain->invalidate(result.invalidated, 0);
-            result.tiles_marked = terrain->tilesAwaitingRebuild(result.generation);
+            result.tiles_marked = terrain->stats().tiles_invalidated - marked_before;
             result.tiles_drawn = terrain->drawnTiles().size();
         }
     }

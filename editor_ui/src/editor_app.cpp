@@ -9,6 +9,7 @@
 #include <osg/NodeCallback>
 
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth_plugin/plugin_options.h"
 #include "terrasynth_plugin/terrain_look.h"
 
 namespace terrasynth::editor {
@@ -128,6 +129,7 @@ int EditorApp::run() {
 
 void EditorApp::frame() {
     items_.clear();
+
     projection_ = ScreenProjection::of(*host_.viewer().getCamera(), host_.width(), host_.height());
     if (camera_) camera_->setAspect(double(host_.width()) / host_.height());
     if (asking_recover_) {
@@ -177,12 +179,12 @@ void EditorApp::ensureTerrain() {
     view_ = worker_->view();
     const SessionView& v = *view_;
     const double extent_m = std::max(v.extent.width, v.extent.height) * v.frame.meters_per_pixel;
-    plugin::TerrainNodeOptions o;
-    o.tile_size = 128;
-    o.max_level = std::max(0, std::min(6, v.database->levelCount() - 1));
-    o.threads = 2;
-    o.pixel_error = 6.0f;
-    o.view_radius_m = 2.0 * extent_m;
+    // The editor's defaults, a draw radius of two extents, the database's levels, then the user's.
+    const std::string settings = std::string(kTerrainDefaults) + " viewRadius=" + std::to_string(2.0 * extent_m) +
+                                 " maxLevel=" + std::to_string(std::max(0, std::min(6, v.database->levelCount() - 1))) +
+                                 " " + options_.terrain_options;
+    auto parsed = plugin::parsePluginOptions(settings);  // checked with the command line
+    const plugin::TerrainNodeOptions o = parsed ? parsed->node : plugin::TerrainNodeOptions{};
     terrain_ = new plugin::TerrainNode(worker_->heightSource(), v.frame.meters_per_pixel, o);
     worker_->attachTerrain(terrain_);
     plugin::TerrainLook look = plugin::lookForHeightRange(v.min_height_m, v.max_height_m);
@@ -202,6 +204,7 @@ void EditorApp::ensureTerrain() {
                             0.5 * (v.min_height_m + v.max_height_m));
     camera_->setFree(centre, 1.1 * extent_m, 0.0, 40.0);
     host_.viewer().setCameraManipulator(camera_.get(), false);
+
 }
 
 void EditorApp::handleInput() {

@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "terrasynth_plugin/plugin_options.h"
+
 namespace terrasynth::editor {
 namespace {
 
@@ -50,6 +52,8 @@ Result<EditorOptions> parseEditorOptions(int argc, const char* const* argv, std:
     app.add_option("--backend", backend, "Synthesis backend: opencl or reference");
     app.add_option("--clear-color", colour, "Background colour R,G,B in [0, 1]");
     app.add_option("--ui-scale", o.ui_scale, "Panel scale")->check(CLI::Range(0.5, 4.0));
+    app.add_option("--terrain-options", o.terrain_options,
+                   "Terrain settings in the plugin's syntax, e.g. \"tileSize=128 pixelError=6\"");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
@@ -62,6 +66,9 @@ Result<EditorOptions> parseEditorOptions(int argc, const char* const* argv, std:
         if (Status s = parseSizeText(size, &o.width, &o.height); !s) return s;
     if (!colour.empty())
         if (Status s = parseColour(colour, o.clear_color); !s) return s;
+    auto terrain = plugin::parsePluginOptions(std::string(kTerrainDefaults) + " " + o.terrain_options);
+    if (!terrain) return Status::error("--terrain-options: " + terrain.message());
+    if (Status s = plugin::validateOptions(terrain->node); !s) return Status::error("--terrain-options: " + s.message());
     if (backend == "opencl") o.synthesizer.backend = SynthesisBackend::OpenCL;
     else if (backend == "reference") o.synthesizer.backend = SynthesisBackend::Reference;
     else return Status::error("--backend: must be opencl or reference, got '" + backend + "'");

@@ -92,6 +92,11 @@ Result<std::vector<ScriptCommand>> parseScript(const std::string& text, const st
             continue;
         }
         for (std::string w; words >> w;) c.args.push_back(w);
+        if (c.op == "set" && c.args.size() > 2) {
+            // Values may hold blanks (type names such as "extreme alpine").
+            for (size_t i = 2; i < c.args.size(); ++i) c.args[1] += " " + c.args[i];
+            c.args.resize(2);
+        }
         const int n = static_cast<int>(c.args.size());
         if (n < shape.min_args || n > shape.max_args) return fail(std::string("needs ") + shape.usage);
         const int numeric = shape.numeric < 0 ? n : std::min(shape.numeric, n);

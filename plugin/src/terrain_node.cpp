@@ -181,10 +181,10 @@ uint64_t TerrainNode::invalidate(const PixelWindow& region, int64_t margin_px) {
 size_t TerrainNode::tilesAwaitingRebuild(uint64_t generation) const {
     std::lock_guard<std::mutex> lock(mutex_);
     size_t n = 0;
-    for (const auto& [key, tile] : tiles_) {
+    for (const TileKey& key : drawn_keys_) {
         // A dirty tile built at or after `generation` already shows that edit (a later one marked it).
-        const bool in_view = cull_frame_ != ~0u && tile.last_used_frame + 1 >= cull_frame_;
-        n += tile.dirty && tile.generation < generation && in_view;
+        auto it = tiles_.find(key);
+        n += it != tiles_.end() && it->second.dirty && it->second.generation < generation;
     }
     return n;
 }
@@ -207,6 +207,7 @@ void TerrainNode::invalidateLocked(const Invalidation& inv) {
         const bool in_view = cull_frame_ != ~0u && it->second.last_used_frame + 1 >= cull_frame_;
         if (in_view) {
             it->second.dirty = true;
+            ++stats_.tiles_invalidated;
             ++it;
         } else {
             resident_bytes_ -= it->second.bytes;

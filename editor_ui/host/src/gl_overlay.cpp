@@ -62,10 +62,12 @@ void drawImGuiOverOsg(osg::State& state) {
     ImGui::Render();
     ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
 
-    // ImGui restored what it saved, but through its own calls: make OSG assume nothing about the
-    // modes, attributes and program it had applied.
+    // ImGui restored what it saved, but through its own calls: make OSG re-apply its attributes and
+    // program. Modes need nothing: ImGui's glPopAttrib(GL_ENABLE_BIT) put back exactly what OSG had
+    // enabled, and State::dirtyAllModes() would be wrong here, as it inverts OSG's record of each
+    // mode: the next frame's enable of a mode OSG had left disabled (GL_DEPTH_TEST, at the end of
+    // every frame) would then be skipped, and the terrain drawn without a depth test.
     state.setLastAppliedProgramObject(nullptr);
-    state.dirtyAllModes();
     state.dirtyAllAttributes();
 }
 

@@ -11,9 +11,10 @@
 namespace terrasynth::host {
 
 // Renders ImGui's current frame (ImGui::Render must not have been called yet) over the viewport,
-// entering from OSG's GL state and leaving OSG's state tracker marked fully dirty, so the next OSG
-// draw re-applies everything it needs (OpenSceneGraph issue 924: geometry merged after an overlay
-// drew would otherwise stop drawing, because OSG believes client arrays are still enabled).
+// entering from OSG's GL state and leaving OSG's state tracker consistent with GL: client arrays
+// disabled through OSG first (OpenSceneGraph issue 924: geometry merged after an overlay drew would
+// otherwise stop drawing, because OSG believes client arrays are still enabled), attributes and the
+// program marked dirty so the next OSG draw re-applies them; modes are restored by ImGui itself.
 void drawImGuiOverOsg(osg::State& state);
 
 // Texture uploads for ImGui images, done while the overlay owns the GL state (unit 0 active).

@@ -98,8 +98,8 @@ struct EditResult {
     PixelWindow changed;      // level-0 heights that changed
     PixelWindow invalidated;  // what the terrain was told to rebuild (changed + overlay changes)
     uint64_t generation = 0;  // TerrainNode::invalidate's generation, 0 when nothing was invalidated
-    // Tiles in view that the invalidation marked for a rebuild (tilesAwaitingRebuild right after it;
-    // tiles still waiting from an earlier edit count again).
+    // Resident tiles in view (drawn, or kept above and around them) that the invalidation marked for
+    // a rebuild (TerrainStats::tiles_invalidated; tiles still waiting from an earlier edit count again).
     size_t tiles_marked = 0;
     size_t tiles_drawn = 0;   // tiles the last cull drew, at the same moment
     uint64_t input_seq = 0;

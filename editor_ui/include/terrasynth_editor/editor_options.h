@@ -2,6 +2,7 @@
 //
 //   terrasynth_editor PROJECT.tsyn [--script FILE] [--stats OUT.json] [--recover] [--size WxH]
 //                     [--backend opencl|reference] [--clear-color R,G,B] [--ui-scale S]
+//                     [--terrain-options "tileSize=64 pixelError=8 ..."]
 //
 // Exit codes: 0 done, 1 the editor failed (no window, a failed save or screenshot in a script),
 // 2 bad input (options, project, script), which is reported before any window opens.
@@ -23,10 +24,18 @@ struct EditorOptions {
     SynthesizerOptions synthesizer;
     float clear_color[3] = {0.62f, 0.72f, 0.85f};
     float ui_scale = 1.0f;
+    // The terrain node's settings, in the plugin's option syntax (terrasynth_plugin/plugin_options.h),
+    // over the editor's defaults (kTerrainDefaults).
+    std::string terrain_options;
     double autosave_interval_s = 1.0;
 };
 
 constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2;
+
+// The editor's terrain settings before --terrain-options: tiles small enough that an edit rebuilds
+// little more than its changed window, two workers (the edit thread and the rasterizer need the rest
+// of a small machine).
+constexpr const char* kTerrainDefaults = "tileSize=64 pixelError=8 threads=2";
 
 // Parses argv; on --help, `help` receives the usage text and the result is an ok empty project.
 // Errors name the option.
