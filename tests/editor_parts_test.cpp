@@ -111,6 +111,11 @@ TEST(EditorOptions, CommandLineAndAutosave) {
     const char* none[] = {"e"};
     EXPECT_FALSE(parseEditorOptions(1, none));
 
+    EXPECT_EQ(terrainPixelError("llvmpipe (LLVM 15.0.6, 256 bits)"), 12.0f);
+    EXPECT_EQ(terrainPixelError("NVIDIA GeForce RTX 3060/PCIe/SSE2"), 6.0f);
+    const char* bad_terrain[] = {"e", "w.tsyn", "--terrain-options", "tileSize=7"};
+    EXPECT_NE(parseEditorOptions(4, bad_terrain).message().find("tileSize"), std::string::npos);
+
     EXPECT_EQ(autosavePath("/a/b/world.tsyn"), "/a/b/world.autosave.tsyn");
     const std::string dir = test::scratchDir("editor_autosave_name");
     const std::string project = dir + "/w.tsyn";

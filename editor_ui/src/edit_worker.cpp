@@ -6,6 +6,10 @@
 #include <chrono>
 #include <exception>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include "terrasynth/incremental.h"
 
 namespace terrasynth::editor {
@@ -211,6 +215,10 @@ uint64_t EditWorker::editCount() const {
 }
 
 void EditWorker::threadMain() {
+    // Below the frame loop, above the tile workers (WorkerPool::kWorkerNice): on a small machine the
+    // main thread must not wait for the CPU while the session synthesizes. Threads created from here
+    // (the OpenCL runtime's, when the session opens) inherit it; Linux nice is per thread.
+    setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kEditThreadNice);
     auto progress = [this](const std::string& stage, double p) {
         std::lock_guard<std::mutex> lock(mutex_);
         progress_stage_ = stage;

@@ -179,8 +179,10 @@ void EditorApp::ensureTerrain() {
     view_ = worker_->view();
     const SessionView& v = *view_;
     const double extent_m = std::max(v.extent.width, v.extent.height) * v.frame.meters_per_pixel;
-    // The editor's defaults, a draw radius of two extents, the database's levels, then the user's.
-    const std::string settings = std::string(kTerrainDefaults) + " viewRadius=" + std::to_string(2.0 * extent_m) +
+    // The editor's defaults, the renderer's pixel error, a draw radius of two extents, the database's
+    // levels, then the user's.
+    const std::string settings = std::string(kTerrainDefaults) + " pixelError=" + std::to_string(terrainPixelError(renderer_)) +
+                                 " viewRadius=" + std::to_string(2.0 * extent_m) +
                                  " maxLevel=" + std::to_string(std::max(0, std::min(6, v.database->levelCount() - 1))) +
                                  " " + options_.terrain_options;
     auto parsed = plugin::parsePluginOptions(settings);  // checked with the command line
@@ -208,6 +210,10 @@ void EditorApp::ensureTerrain() {
 }
 
 void EditorApp::handleInput() {
+    // Any input, to ImGui or to the tools, postpones the autosave.
+    if (!host_.routedEvents().empty() || ImGui::IsAnyItemActive() || ImGui::GetIO().MouseDelta.x != 0.0f ||
+        ImGui::GetIO().MouseDelta.y != 0.0f)
+        last_input_s_ = frame_input_s_;
     for (const host::InputEvent& e : host_.routedEvents()) {
         using T = host::InputEvent::Type;
         if (e.type == T::KeyDown || e.type == T::KeyRepeat) {
@@ -297,9 +303,12 @@ void EditorApp::save(const std::string& path) {
 }
 
 void EditorApp::autosaveTick() {
+    // At most once per interval, and only in a pause: a save of a 1024^2 extent writes ~30 MB on the
+    // edit thread, and an edit submitted meanwhile would wait for it.
     if (gestures_open_ > 0 || autosave_queued_ || drag_.kind != Drag::Kind::None) return;
     const double now = steadySeconds();
     if (now - last_autosave_s_ < options_.autosave_interval_s) return;
+    if (now - last_input_s_ < options_.autosave_interval_s || !worker_->idle()) return;
     if (worker_->editCount() == autosaved_count_) return;
     autosave_queued_ = true;
     auto saved_count = std::make_shared<uint64_t>(0);

@@ -186,6 +186,7 @@ private:
     std::string last_error_;
     uint64_t user_saved_count_ = 0;
     double last_autosave_s_ = -1e9;
+    double last_input_s_ = -1e9;
     uint64_t autosaved_count_ = 0;
     bool autosave_queued_ = false;
     std::vector<double> autosave_ms_;

@@ -45,7 +45,7 @@ Result<EditorOptions> parseEditorOptions(int argc, const char* const* argv, std:
     std::string size, backend = "opencl", colour;
     CLI::App app("terrasynth_editor: edit a terrasynth project inside the 3D view", "terrasynth_editor");
     app.add_option("project", o.project, "Project file (.tsyn)")->required();
-    app.add_option("--script", o.script, "Play timed input from FILE, then exit (editor_ui/README.md)");
+    app.add_option("--script", o.script, "Play timed input from FILE, then exit (docs/editor.md)");
     app.add_option("--stats", o.stats, "Write latency and frame statistics (JSON) at exit");
     app.add_flag("--recover", o.recover, "Open the project's autosave when it is newer than the project");
     app.add_option("--size", size, "Window size WxH (default 1280x720)");
@@ -73,6 +73,12 @@ Result<EditorOptions> parseEditorOptions(int argc, const char* const* argv, std:
     else if (backend == "reference") o.synthesizer.backend = SynthesisBackend::Reference;
     else return Status::error("--backend: must be opencl or reference, got '" + backend + "'");
     return o;
+}
+
+float terrainPixelError(const std::string& gl_renderer) {
+    for (const char* software : {"llvmpipe", "softpipe", "swrast", "Software Rasterizer"})
+        if (gl_renderer.find(software) != std::string::npos) return 12.0f;
+    return 6.0f;
 }
 
 std::string autosavePath(const std::string& project_path) {

@@ -54,6 +54,7 @@ void EditorApp::drawLayersPanel() {
     for (int i = n - 1; i >= 0; --i) {
         const EditLayer& layer = stack.layers[static_cast<size_t>(i)];
         ImGui::PushID(i);
+        const std::string item = "layer." + std::to_string(i);
         bool visible = layer.visible;
         if (ImGui::Checkbox("##visible", &visible)) {
             EditRequest r;
@@ -61,12 +62,14 @@ void EditorApp::drawLayersPanel() {
             r.run = [i, visible](EditSession& s) { return s.setLayerVisible(i, visible); };
             submit(std::move(r));
         }
+        noteItem(item + ".visible");
         ImGui::SameLine();
         const std::string label = std::to_string(i) + ": " + layer.name + " (" + toolTypeName(layer.tool) + ")";
         if (ImGui::Selectable(label.c_str(), selected_layer_ == i, 0, ImVec2(150, 0))) selected_layer_ = i;
-        noteItem("layer." + std::to_string(i));
+        noteItem(item);
         ImGui::SameLine();
-        auto button = [&](const char* text, bool enabled, const char* what, std::function<Result<PixelWindow>(EditSession&)> run) {
+        auto button = [&](const char* text, const char* id, bool enabled, const char* what,
+                          std::function<Result<PixelWindow>(EditSession&)> run) {
             if (!enabled) ImGui::BeginDisabled();
             if (ImGui::SmallButton(text)) {
                 EditRequest r;
@@ -74,19 +77,17 @@ void EditorApp::drawLayersPanel() {
                 r.run = std::move(run);
                 submit(std::move(r));
             }
+            noteItem(item + "." + id);
             if (!enabled) ImGui::EndDisabled();
-            ImGui::SameLine();
         };
-        button("^", i + 1 < n, "move layer up", [i](EditSession& s) { return s.moveLayer(i, i + 1); });
-        button("v", i > 0, "move layer down", [i](EditSession& s) { return s.moveLayer(i, i - 1); });
-        button("merge", i > 0, "merge layer down", [i](EditSession& s) { return s.mergeLayerDown(i); });
-        if (ImGui::SmallButton("x")) {
-            EditRequest r;
-            r.label = "remove layer";
-            r.run = [i](EditSession& s) { return s.removeLayer(i); };
-            submit(std::move(r));
-            if (selected_layer_ == i) selected_layer_ = -1;
-        }
+        button("^", "up", i + 1 < n, "move layer up", [i](EditSession& s) { return s.moveLayer(i, i + 1); });
+        ImGui::SameLine();
+        button("v", "down", i > 0, "move layer down", [i](EditSession& s) { return s.moveLayer(i, i - 1); });
+        ImGui::SameLine();
+        button("merge", "merge", i > 0, "merge layer down", [i](EditSession& s) { return s.mergeLayerDown(i); });
+        ImGui::SameLine();
+        button("x", "remove", true, "remove layer", [i](EditSession& s) { return s.removeLayer(i); });
+        if (ImGui::IsItemClicked() && selected_layer_ == i) selected_layer_ = -1;
         ImGui::PopID();
     }
     if (selected_layer_ >= 0 && selected_layer_ < n) {

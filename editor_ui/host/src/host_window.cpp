@@ -269,6 +269,7 @@ bool HostWindow::beginFrame() {
     Impl& impl = *impl_;
     impl.frame_start = Clock::now();
     glfwPollEvents();
+
     int w = 0, h = 0;
     glfwGetFramebufferSize(impl.window, &w, &h);
     if ((w != width_ || h != height_) && w > 0 && h > 0) {

@@ -118,6 +118,8 @@ using SessionOpener = std::function<Result<std::unique_ptr<EditSession>>(
 class EditWorker {
 public:
     enum class State { Opening, Ready, Failed };
+    // CPU niceness of the edit thread (see threadMain).
+    static constexpr int kEditThreadNice = 5;
 
     // Starts the edit thread, which first runs `opener`.
     explicit EditWorker(SessionOpener opener);

@@ -27,6 +27,7 @@ struct EditorOptions {
     // The terrain node's settings, in the plugin's option syntax (terrasynth_plugin/plugin_options.h),
     // over the editor's defaults (kTerrainDefaults).
     std::string terrain_options;
+    // Autosaves are at least this far apart, and wait for this long without input.
     double autosave_interval_s = 1.0;
 };
 
@@ -34,8 +35,11 @@ constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2;
 
 // The editor's terrain settings before --terrain-options: tiles small enough that an edit rebuilds
 // little more than its changed window, two workers (the edit thread and the rasterizer need the rest
-// of a small machine).
-constexpr const char* kTerrainDefaults = "tileSize=64 pixelError=8 threads=2";
+// of a small machine); the pixel error is chosen by the renderer (terrainPixelError).
+constexpr const char* kTerrainDefaults = "tileSize=64 threads=2";
+// Screen-space error for `gl_renderer` (GL_RENDERER): 12 px on a software rasterizer (Mesa llvmpipe,
+// softpipe, swrast), where triangles cost CPU the edits need; 6 px on a GPU.
+float terrainPixelError(const std::string& gl_renderer);
 
 // Parses argv; on --help, `help` receives the usage text and the result is an ok empty project.
 // Errors name the option.

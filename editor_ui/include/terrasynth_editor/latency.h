@@ -88,7 +88,7 @@ struct TileAccounting {
     uint64_t built = 0, swapped = 0, unchanged = 0;  // TerrainStats deltas over the measured phases
 };
 
-// Everything --stats writes, as JSON text (docs: editor_ui/README.md).
+// Everything --stats writes, as JSON text (docs/editor.md).
 struct EditorStats {
     int window_width = 0, window_height = 0;
     int extent_width = 0, extent_height = 0;

@@ -12,7 +12,7 @@
 //   view free X Y DISTANCE_M HEADING_DEG PITCH_DEG   orbit view around level-0 pixel (X, Y)
 //   tool NAME                        point curve paint freeze paste peak ridge holefill noise
 //                                    perspective
-//   set KEY VALUE                    a tool option (editor_ui/README.md lists them); the value is
+//   set KEY VALUE                    a tool option (docs/editor.md lists them); the value is
 //                                    the rest of the line
 //   move X Y | press [BUTTON] | release [BUTTON] | click [BUTTON]     BUTTON: left right middle
 //   drag X0 Y0 X1 Y1 [STEPS]         press at (X0, Y0), STEPS moves (default 10), release
