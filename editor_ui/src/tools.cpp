@@ -563,8 +563,15 @@ void EditorApp::placePaste(double dx, double dy, std::optional<EditId> replacing
         }
         return uniteWindows(*removed, *added);
     };
-    r.done = [this, id](const EditResult& res) {
-        if (res.status) selected_paste_ = *id, selected_point_ = selected_curve_ = 0;
+    r.done = [this, id, replacing](const EditResult& res) {
+        if (!res.status) return;
+        selected_paste_ = *id, selected_point_ = selected_curve_ = 0;
+        if (!replacing) {
+            // The next lasso starts a new copy.
+            paste_source_.clear();
+            paste_exemplar_ = -1;
+            setStatus("pasted: drag it to move it, raise it in the inspector", false);
+        }
     };
     submit(std::move(r));
 }
