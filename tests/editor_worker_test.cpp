@@ -141,6 +141,23 @@ TEST(EditorWorker, FailedEditsChangeNothingAndReportTheirStatus) {
     EXPECT_NE(results[2].status.message().find("boom"), std::string::npos);
     EXPECT_EQ(worker->view()->edit_count, count);
     EXPECT_EQ(heightsOf(*worker).heights, start.heights);
+
+    // A failed save says why and leaves the session dirty.
+    PointConstraint good;
+    good.x = 100, good.y = 100, good.height_m = start.at(100, 100) + 50.0f, good.radius_px = 10;
+    worker->submit(request("add point", [good](EditSession& s) { return s.addPoint(good); }));
+    const std::string bad_path = test::scratchDir("editor_worker_fail") + "/missing/folder/w.tsyn";
+    worker->submit(request("save", [bad_path](EditSession& s) -> Result<PixelWindow> {
+        if (Status st = s.save(bad_path); !st) return st;
+        return PixelWindow{};
+    }));
+    ASSERT_TRUE(worker->waitIdle(120.0));
+    const auto saved = worker->takeResults();
+    ASSERT_EQ(saved.size(), 2u);
+    EXPECT_TRUE(saved[0].status) << saved[0].status.message();
+    EXPECT_FALSE(saved[1].status);
+    EXPECT_NE(saved[1].status.message().find("missing/folder"), std::string::npos) << saved[1].status.message();
+    EXPECT_TRUE(worker->view()->dirty);
 }
 
 TEST(EditorWorker, TheTerrainRebuildsOnlyTilesTouchingTheChangedWindow) {

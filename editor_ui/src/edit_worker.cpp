@@ -57,24 +57,6 @@ auto guardedCall(Body&& body, const std::string& what) -> decltype(body()) {
     }
 }
 
-// Bounding box of the pixels where two extent-sized planes differ (global level-0 pixels).
-PixelWindow differingBox(const PixelWindow& extent, const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-    if (a.size() != b.size()) return extent;
-    int64_t x0 = INT64_MAX, y0 = INT64_MAX, x1 = INT64_MIN, y1 = INT64_MIN;
-    for (int y = 0; y < extent.height; ++y) {
-        const uint8_t* ra = a.data() + static_cast<size_t>(y) * extent.width;
-        const uint8_t* rb = b.data() + static_cast<size_t>(y) * extent.width;
-        if (std::equal(ra, ra + extent.width, rb)) continue;
-        int first = 0, last = extent.width - 1;
-        while (ra[first] == rb[first]) ++first;
-        while (ra[last] == rb[last]) --last;
-        x0 = std::min<int64_t>(x0, extent.x + first), x1 = std::max<int64_t>(x1, extent.x + last + 1);
-        y0 = std::min<int64_t>(y0, extent.y + y), y1 = std::max<int64_t>(y1, extent.y + y + 1);
-    }
-    if (x1 <= x0) return {extent.x, extent.y, 0, 0};
-    return {x0, y0, static_cast<int>(x1 - x0), static_cast<int>(y1 - y0)};
-}
-
 // `paint` (over its own rectangle) copied onto an extent-sized plane where it is painted.
 void stampPaint(const TypePaint& paint, const PixelWindow& extent, std::vector<uint8_t>& plane, bool as_flag) {
     const PixelWindow both = intersectWindows({paint.x, paint.y, paint.width, paint.height}, extent);
@@ -100,10 +82,9 @@ EditWorker::~EditWorker() {
     }
     wake_.notify_all();
     if (thread_.joinable()) thread_.join();
-    if (terrain_) {
-        // The tile workers may still call the overlay source; it must not outlive this object.
-        terrain_->setTypeSource({});
-    }
+    // Tiles built from now on carry no overlay (queued builds keep their copy of the source, which
+    // holds the masks it reads).
+    if (terrain_) terrain_->setTypeSource({});
 }
 
 EditWorker::State EditWorker::state() const { return state_.load(); }
@@ -123,9 +104,9 @@ void EditWorker::attachTerrain(osg::ref_ptr<plugin::TerrainNode> terrain) {
         std::lock_guard<std::mutex> lock(mutex_);
         terrain_ = terrain;
     }
-    terrain->setTypeSource([this](const PixelWindow& w, int level) -> Result<std::vector<uint8_t>> {
+    terrain->setTypeSource([box = mask_box_](const PixelWindow& w, int level) -> Result<std::vector<uint8_t>> {
         std::vector<uint8_t> out(static_cast<size_t>(w.width) * w.height, kUnknownType);
-        const std::shared_ptr<const OverlayMasks> m = masks();
+        const std::shared_ptr<const OverlayMasks> m = box->get();
         if (!m) return out;
         const PixelWindow& e = m->extent;
         for (int y = 0; y < w.height; ++y) {
@@ -181,10 +162,7 @@ std::shared_ptr<const SessionView> EditWorker::view() const {
     return view_;
 }
 
-std::shared_ptr<const OverlayMasks> EditWorker::masks() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return masks_;
-}
+std::shared_ptr<const OverlayMasks> EditWorker::masks() const { return mask_box_->get(); }
 
 bool EditWorker::idle() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -323,11 +301,11 @@ PixelWindow EditWorker::refreshMasks() {
     std::shared_ptr<const OverlayMasks> previous = masks();
     PixelWindow changed = {e.x, e.y, 0, 0};
     if (previous) {
-        changed = uniteWindows(differingBox(e, previous->painted, next->painted),
-                               differingBox(e, previous->frozen, next->frozen));
+        changed = uniteWindows(differingWindow(e, previous->painted, next->painted),
+                               differingWindow(e, previous->frozen, next->frozen));
     }
-    std::lock_guard<std::mutex> lock(mutex_);
-    masks_ = std::move(next);
+    std::lock_guard<std::mutex> lock(mask_box_->mutex);
+    mask_box_->masks = std::move(next);
     return changed;
 }
 

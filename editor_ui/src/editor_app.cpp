@@ -123,6 +123,19 @@ int EditorApp::run() {
         if (terrain_) frames_.add(phase_, t);
     }
     if (worker_ && worker_->state() == EditWorker::State::Failed && exit_code_ == kExitOk) exit_code_ = kExitBadInput;
+    // Closing the window never loses work: what the autosave does not hold yet is written now.
+    if (worker_ && worker_->state() == EditWorker::State::Ready && script_.empty()) {
+        for (int i = 0; i < gestures_open_; ++i) endGesture();
+        drag_ = Drag{};
+        worker_->waitIdle(600.0);
+        worker_->takeResults();
+        if (worker_->editCount() != autosaved_count_ && worker_->editCount() != user_saved_count_) {
+            last_autosave_s_ = last_input_s_ = -1e9;
+            autosaveTick();
+            worker_->waitIdle(600.0);
+            worker_->takeResults();
+        }
+    }
     if (!options_.stats.empty()) writeStats();
     return exit_code_;
 }

@@ -95,7 +95,8 @@ private:
     void finishRegion();
     void finishPerspectiveStroke();
     void placePaste(double dx, double dy, std::optional<EditId> replacing);
-    void addLayer(EditLayer layer, const std::string& label);
+    // A new layer on top of the stack with the tool's default band weights, selected once added.
+    void addLayer(const std::string& name, ToolParams tool);
     void movePointTo(EditId id, double px, double py);
     void moveWidgetTo(double px, double py);
     std::vector<CurveWidget> presetWidgets(const Polyline& course) const;

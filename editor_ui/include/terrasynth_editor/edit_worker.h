@@ -182,7 +182,17 @@ private:
     std::string progress_stage_ = "opening";
     double progress_ = 0.0;
     std::shared_ptr<const SessionView> view_;
-    std::shared_ptr<const OverlayMasks> masks_;
+    // The current masks, shared with the terrain's type source: tile builds may still read it after
+    // this worker is gone (they hold copies of the source).
+    struct MaskBox {
+        mutable std::mutex mutex;
+        std::shared_ptr<const OverlayMasks> masks;
+        std::shared_ptr<const OverlayMasks> get() const {
+            std::lock_guard<std::mutex> lock(mutex);
+            return masks;
+        }
+    };
+    std::shared_ptr<MaskBox> mask_box_ = std::make_shared<MaskBox>();
     osg::ref_ptr<plugin::TerrainNode> terrain_;
 
     std::thread thread_;  // last: started once everything above exists
