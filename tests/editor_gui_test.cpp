@@ -32,7 +32,10 @@ namespace terrasynth {
 namespace {
 
 constexpr int kW = 1280, kH = 720;
-constexpr double kAerialWidthM = 60000.0;  // what the scripts' "view aerial 512 512 60000" shows
+constexpr double kAerialWidthM = 60000.0;  // what kAerialStart shows
+// How the scripts start: the session open and the view filled in, then straight down on the middle of
+// the extent, 60 km across.
+constexpr const char* kAerialStart = "settle\nview aerial 512 512 60000\nsettle\n";
 // The latency targets (issue 14) and the factor the test allows on a shared CI machine.
 constexpr double kSlack = 3.0;
 
@@ -158,10 +161,7 @@ TEST(EditorGui, PointClickDragSaveAndWhatIsOnScreen) {
     const std::string dir = test::scratchDir("editor_point");
     const std::string project = writeProject(dir);
     ASSERT_FALSE(project.empty());
-    const std::string script = writeText(dir + "/point.script", R"(settle
-view aerial 512 512 60000
-settle
-screenshot )" + dir + R"(/before.png 3d
+    const std::string script = writeText(dir + "/point.script", std::string(kAerialStart) + R"(screenshot )" + dir + R"(/before.png 3d
 screenshot )" + dir + R"(/ui.png ui
 tool point
 set point.raise 400
@@ -253,10 +253,7 @@ TEST(EditorGui, EditsSaveAndReopenBitIdenticalAndUndoAllRestoresTheStart) {
     const std::string project = writeProject(dir);
     ASSERT_FALSE(project.empty());
     const std::string type = test::defaultDatabase()->type_names.back();
-    const std::string script = writeText(dir + "/edits.script", R"(settle
-view aerial 512 512 60000
-settle
-heights )" + dir + R"(/start.f32
+    const std::string script = writeText(dir + "/edits.script", std::string(kAerialStart) + R"(heights )" + dir + R"(/start.f32
 tool curve
 set curve.preset ridge
 drag 420 250 720 300 12
@@ -329,10 +326,7 @@ TEST(EditorGui, LayerToolsPanelsAndExemplarPaste) {
     ASSERT_FALSE(project.empty());
     // Every layer tool of Bradbury et al. 2014 through the 3D view and the panels, and a piece of an
     // exemplar lassoed on its thumbnail and pasted into the terrain (Gain et al. 2015 fig. 8).
-    const std::string script = writeText(dir + "/layers.script", R"(settle
-view aerial 512 512 60000
-settle
-tool ridge
+    const std::string script = writeText(dir + "/layers.script", std::string(kAerialStart) + R"(tool ridge
 set ridge.height 500
 drag 450 300 650 340 10
 settle
@@ -426,10 +420,7 @@ TEST(EditorGui, TheAutosaveHoldsTheLastEditAfterKillAndIsRecovered) {
     const std::string dir = test::scratchDir("editor_autosave");
     const std::string project = writeProject(dir);
     ASSERT_FALSE(project.empty());
-    const std::string script = writeText(dir + "/kill.script", R"(settle
-view aerial 512 512 60000
-settle
-tool point
+    const std::string script = writeText(dir + "/kill.script", std::string(kAerialStart) + R"(tool point
 move 600 400
 click
 settle

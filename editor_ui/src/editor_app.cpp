@@ -278,22 +278,29 @@ void EditorApp::endGesture() {
     submit(std::move(r));
 }
 
-void EditorApp::undo() {
+void EditorApp::submitDragStep(InputKind kind, const std::string& label, const std::string& coalesce_key,
+                               std::function<Result<PixelWindow>(EditSession&)> run,
+                               std::function<void(const EditResult&)> done) {
     EditRequest r;
-    r.label = "undo";
-    r.refresh_masks = true;
-    r.run = [](EditSession& s) { return s.undo(); };
+    r.label = label;
+    r.coalesce_key = coalesce_key;
+    r.input_seq = latency_.noteInput(kind, frame_input_s_);
+    r.input_kind = static_cast<int>(kind);
+    r.run = std::move(run);
+    r.done = std::move(done);
     submit(std::move(r));
-    setStatus("undo", false);
 }
 
-void EditorApp::redo() {
+void EditorApp::undo() { stepHistory(false); }
+void EditorApp::redo() { stepHistory(true); }
+
+void EditorApp::stepHistory(bool forward) {
     EditRequest r;
-    r.label = "redo";
-    r.refresh_masks = true;
-    r.run = [](EditSession& s) { return s.redo(); };
+    r.label = forward ? "redo" : "undo";
+    r.refresh_masks = true;  // painting, freezing and pastes may come back or go
+    r.run = [forward](EditSession& s) { return forward ? s.redo() : s.undo(); };
     submit(std::move(r));
-    setStatus("redo", false);
+    setStatus(r.label, false);
 }
 
 void EditorApp::save(const std::string& path) {

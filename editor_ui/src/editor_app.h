@@ -72,6 +72,11 @@ private:
     void autosaveTick();
     void writeStats();
     void submit(EditRequest request);
+    // One step of a measured drag (latency.h): latest wins against the previous step.
+    void submitDragStep(InputKind kind, const std::string& label, const std::string& coalesce_key,
+                        std::function<Result<PixelWindow>(EditSession&)> run,
+                        std::function<void(const EditResult&)> done = {});
+    void stepHistory(bool forward);
     void beginGesture();
     void endGesture();
     void undo();

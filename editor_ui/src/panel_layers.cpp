@@ -25,15 +25,12 @@ void EditorApp::drawBandSliders(const std::string& id, BandWeights weights, int 
         *bands[b] = live;
     }
     if (!changed) return;
-    const uint64_t seq = latency_.noteInput(InputKind::BandSlider, frame_input_s_);
-    EditRequest r;
-    r.label = layer_index < 0 ? "base bands" : "layer bands";
-    r.coalesce_key = "weights:" + id;
-    r.input_seq = seq;
-    r.input_kind = static_cast<int>(InputKind::BandSlider);
-    if (layer_index < 0) r.run = [weights](EditSession& s) { return s.setBaseWeights(weights); };
-    else r.run = [layer_index, weights](EditSession& s) { return s.setLayerWeights(layer_index, weights); };
-    submit(std::move(r));
+    if (layer_index < 0)
+        submitDragStep(InputKind::BandSlider, "base bands", "weights:" + id,
+                       [weights](EditSession& s) { return s.setBaseWeights(weights); });
+    else
+        submitDragStep(InputKind::BandSlider, "layer bands", "weights:" + id,
+                       [layer_index, weights](EditSession& s) { return s.setLayerWeights(layer_index, weights); });
 }
 
 void EditorApp::drawLayersPanel() {

@@ -271,37 +271,24 @@ void EditorApp::movePointTo(EditId id, double dx, double dy) {
     if (drag_.stroke_px.empty()) return;
     // From the site where the drag started (the view may already show intermediate moves).
     const double x = std::round(drag_.stroke_px.front().first + dx), y = std::round(drag_.stroke_px.front().second + dy);
-    const uint64_t seq = latency_.noteInput(InputKind::PointDrag, frame_input_s_);
-    EditRequest r;
-    r.label = "move point";
-    r.coalesce_key = "point-drag";
-    r.input_seq = seq;
-    r.input_kind = static_cast<int>(InputKind::PointDrag);
-    r.run = [id, x, y](EditSession& s) { return s.movePoint(id, x, y); };
-    submit(std::move(r));
+    submitDragStep(InputKind::PointDrag, "move point", "point-drag", [id, x, y](EditSession& s) { return s.movePoint(id, x, y); });
 }
 
 void EditorApp::moveWidgetTo(double px, double py) {
     const CurveItem* c = view_->findCurve(selected_curve_);
     if (!c || selected_widget_ < 0 || selected_widget_ >= static_cast<int>(c->curve.widgets.size())) return;
     const double t = nearestOnPolyline(c->curve.course, px, py).t;
-    const uint64_t seq = latency_.noteInput(InputKind::WidgetDrag, frame_input_s_);
-    EditRequest r;
-    r.label = "move widget";
-    r.coalesce_key = "widget-drag";
-    r.input_seq = seq;
-    r.input_kind = static_cast<int>(InputKind::WidgetDrag);
     const EditId id = selected_curve_;
     const int index = selected_widget_;
-    r.run = [id, index, t](EditSession& s) { return s.moveWidget(id, index, t); };
     // Widgets stay sorted by t: the dragged one may change its index.
-    r.done = [this, t](const EditResult& res) {
-        if (!res.status || !view_) return;
-        if (const CurveItem* cur = view_->findCurve(selected_curve_))
-            for (size_t i = 0; i < cur->curve.widgets.size(); ++i)
-                if (cur->curve.widgets[i].t == t) selected_widget_ = static_cast<int>(i);
-    };
-    submit(std::move(r));
+    submitDragStep(InputKind::WidgetDrag, "move widget", "widget-drag",
+                   [id, index, t](EditSession& s) { return s.moveWidget(id, index, t); },
+                   [this, t](const EditResult& res) {
+                       if (!res.status || !view_) return;
+                       if (const CurveItem* cur = view_->findCurve(selected_curve_))
+                           for (size_t i = 0; i < cur->curve.widgets.size(); ++i)
+                               if (cur->curve.widgets[i].t == t) selected_widget_ = static_cast<int>(i);
+                   });
 }
 
 void EditorApp::deleteSelection() {
