@@ -156,6 +156,18 @@ TEST(ProjectHardening, LayerStacksAreBoundedInDepthAndCount) {
         ".");
     ASSERT_FALSE(wide);
     EXPECT_TRUE(contains(wide.message(), "width_px")) << wide.message();
+    // Numbers beyond int were narrowed before their check (UB; found by fuzzing).
+    auto huge_image = parseLayerStack(
+        R"([{"type": "perspective", "image_size": [1e57, 600], "horizon": [[0, 200], [800, 200]],
+             "grid": {"left": [[100, 600], [350, 250]], "right": [[700, 600], [450, 250]],
+                      "near": [[100, 600], [700, 600]], "far": [[350, 250], [450, 250]]},
+             "ground": [[0, 512], [512, 512], [512, 0], [0, 0]], "camera_height_m": 300, "strokes": []}])",
+        ".");
+    ASSERT_FALSE(huge_image);
+    EXPECT_TRUE(contains(huge_image.message(), "image_size")) << huge_image.message();
+    auto huge_cut = parseLayerStack(R"([{"type": "base", "band_cuts_px": [8, 1e12]}])", ".");
+    ASSERT_FALSE(huge_cut);
+    EXPECT_TRUE(contains(huge_cut.message(), "band_cuts_px")) << huge_cut.message();
     // Grids beyond any layer stack are refused, not allocated.
     auto stack = parseLayerStack("[]", ".");
     ASSERT_TRUE(stack);

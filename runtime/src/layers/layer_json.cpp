@@ -184,7 +184,14 @@ ToolParams readPerspective(Reader& r) {
     p.reference_image = r.string("reference_image", "");
     PerspectiveCanvas& c = p.canvas;
     const std::vector<double> size = r.numbers("image_size", 2, 2);
-    if (size.size() == 2) c.image_width = static_cast<int>(size[0]), c.image_height = static_cast<int>(size[1]);
+    if (size.size() == 2) {
+        // Checked as doubles before narrowing (1e57 as an int is undefined; found by fuzzing).
+        auto side = [](double v) { return v >= 1.0 && v <= limits::kMaxImageSide && v == std::floor(v); };
+        if (side(size[0]) && side(size[1]))
+            c.image_width = static_cast<int>(size[0]), c.image_height = static_cast<int>(size[1]);
+        else
+            r.fail("image_size", "must be two whole numbers 1.." + std::to_string(limits::kMaxImageSide));
+    }
     c.horizon = readLine(r, r.child("horizon"), "horizon");
     if (const json* g = r.child("grid")) {
         Reader gr(*g, r.where() + ".grid");
@@ -407,12 +414,15 @@ Result<LayerStack> layers::parseLayerStackJson(const json& layers, const std::st
         if (r.has("band_cuts_px")) {
             const std::vector<double> cuts = r.numbers("band_cuts_px", 2, 2);
             if (cuts.size() == 2) {
-                stack.bands.high_mid_cut_px = static_cast<int>(cuts[0]);
-                stack.bands.mid_low_cut_px = static_cast<int>(cuts[1]);
-                if (cuts[0] != stack.bands.high_mid_cut_px || cuts[1] != stack.bands.mid_low_cut_px)
-                    r.fail("band_cuts_px", "must be integers");
-                else
+                // Whole and within an image side before narrowing (an out-of-range double -> int is undefined).
+                auto whole = [](double v) { return std::fabs(v) <= limits::kMaxImageSide && v == std::floor(v); };
+                if (!whole(cuts[0]) || !whole(cuts[1])) {
+                    r.fail("band_cuts_px", "must be integers within +-" + std::to_string(limits::kMaxImageSide));
+                } else {
+                    stack.bands.high_mid_cut_px = static_cast<int>(cuts[0]);
+                    stack.bands.mid_low_cut_px = static_cast<int>(cuts[1]);
                     layers::adopt(r, validateBandSplit(stack.bands).withContext("band_cuts_px"));
+                }
             }
         }
         b.weights = layers::readWeights(r, BandWeights{});
