@@ -64,6 +64,12 @@ struct SynthesisParams {
     // (default 2) so they do not look intrusive; point sites still land on their heights when the
     // points are lifted (liftPointConstraints below).
     int first_constrained_level = kFirstConstrainedLevel;
+    // Hold the geometric constraints' own pixels on the free finest levels: a curve's course (the
+    // pixels next to it) and a point's site (its 7x7 pixels) are still pulled towards their targets
+    // with phi_d there, everything around them stays free. With the lifts below this makes finished
+    // courses land on their widgets' heights and sites on their slopes (docs/curves.md). Projects
+    // set it with hold_point_heights; false = the paper's free finest levels.
+    bool hold_on_free_levels = false;
     // Coherence (s5.3): the previous results are offered as an extra candidate whose cost is
     // multiplied by W; frozen pixels keep their previous S and V exactly. With unchanged inputs the
     // result is bit-identical to the previous one. `coherence` null = Coherent everywhere.
@@ -127,6 +133,10 @@ protected:
 // finished level-0 height at each site is within tolerance_m of height_m, found by synthesizing a
 // 2x2 window at each site (equal to the full synthesis, see above) up to max_rounds times and
 // correcting the lift by the residual; if the tolerance is not reached, the best round is kept.
+// With hold_on_free_levels the slope is held over the site's own 7x7 pixels too (points asked at
+// 5 degrees or more): the tilts (PointConstraint::tilt_east/south) are searched the same way until
+// the plane fitted over the finished 7x7 pixels rises within 10% of the asked rise (measured: from
+// 10 degrees up, direction within 15 degrees, docs/curves.md).
 // Pass the same params (coherence, history) as the synthesis that will use the result; existing
 // lifts are the starting point, so re-lifting after a small edit usually takes one or two rounds.
 // Cost: rounds x points small syntheses (about 2 ms each via PoCL). Errors: those of synthesize().
@@ -140,5 +150,30 @@ struct PointLiftOptions {
 Result<std::shared_ptr<const SynthesisConstraints>> liftPointConstraints(Synthesizer& synthesizer,
                                                                          const SynthesisParams& params,
                                                                          const PointLiftOptions& options = {});
+
+// Curve heights that hold, the curve equivalent of liftPointConstraints. Every curve gets a lift
+// profile (CurveConstraint::lift_m, stations about station_spacing_px apart along the course) so
+// the finished level-0 heights along the course land on the widgets' heights (junctions pinned,
+// terrasynth/curve_course.h): each station's residual is the mean of the finished course's
+// residuals around it (weighted like the linear interpolation between stations), measured by
+// synthesizing small windows along the course (equal to the full synthesis); each station is then
+// searched like a point's lift. The stations' residuals shrink to the detail of the free finest
+// levels, which averages out along the course (docs/curves.md: measured figures). The round with
+// the smallest mean |residual| along the moving part of the courses is kept. Existing lift
+// profiles are the starting point (resampled when the station count differs). Pass the same params
+// (coherence, history, point lifts) as the synthesis that will use the result.
+// Cost: per round, about a quarter of a synthesis of the courses' bounding boxes (windows of
+// 64 px of course plus the synthesis margins). Errors: those of synthesize().
+struct CurveLiftOptions {
+    float tolerance_m = 1.0f;  // stop once every moving station's residual is within this
+    int max_rounds = 6;        // >= 1; 1 only measures
+    double station_spacing_px = 8.0;  // > 0, level-0 pixels of arc length between stations
+    // Lift only the stations that lie in this level-0 window (an edit's area); the others keep
+    // their lift. Unset = all stations.
+    std::optional<PixelWindow> stations_within;
+};
+Result<std::shared_ptr<const SynthesisConstraints>> liftCurveConstraints(Synthesizer& synthesizer,
+                                                                         const SynthesisParams& params,
+                                                                         const CurveLiftOptions& options = {});
 
 }  // namespace terrasynth

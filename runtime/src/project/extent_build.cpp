@@ -16,9 +16,15 @@ Result<SynthesisParams> referenceParams(Synthesizer& synthesizer, const Project&
     params.previous.reset();
     params.coherence.reset();
     params.record_history = false;
+    params.hold_on_free_levels = project.hold_point_heights;
     if (project.hold_point_heights && params.constraints && !params.constraints->points.empty()) {
         auto lifted = liftPointConstraints(synthesizer, params);
         if (!lifted) return lifted.status().withContext(project.path + ": constraints.points");
+        params.constraints = std::move(lifted.value());
+    }
+    if (project.hold_point_heights && params.constraints && !params.constraints->curves.empty()) {
+        auto lifted = liftCurveConstraints(synthesizer, params);
+        if (!lifted) return lifted.status().withContext(project.path + ": constraints.curves");
         params.constraints = std::move(lifted.value());
     }
     return params;

@@ -13,8 +13,8 @@ namespace terrasynth::project {
 // the project file and the field.
 Result<std::shared_ptr<const SynthesisConstraints>> projectConstraints(const Project& project, const ExemplarDatabase& db);
 
-// The project's synthesis settings with `constraints`, points lifted once (s5.1, hold_point_heights)
-// so every window of the world synthesizes with the same targets: the reference synthesis.
+// The project's synthesis settings with `constraints`, points and curves lifted once (s5.1,
+// hold_point_heights) so every window of the world synthesizes with the same targets: the reference synthesis.
 Result<SynthesisParams> referenceParams(Synthesizer& synthesizer, const Project& project,
                                         std::shared_ptr<const SynthesisConstraints> constraints);
 

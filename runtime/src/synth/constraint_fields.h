@@ -24,13 +24,20 @@ struct LevelConstraints {
     std::vector<uint32_t> target_sets;
 };
 
-// Nothing below `first_level` (SynthesisParams::first_constrained_level).
+// Below `first_level` (SynthesisParams::first_constrained_level) nothing, or with `hold_free_levels`
+// (SynthesisParams::hold_on_free_levels) the constraints' own pixels only: the points' 7x7 sites,
+// and the curves within the usual localisation but held softly (accumulateCurve, curve_raster.h).
 LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
-                                     const LevelRegion& region, double meters_per_pixel0);
+                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0);
+
+// Half the width of a point's own 7x7 pixels (level-0 pixels from the site): held on the free levels
+// so the slope seen over them holds.
+constexpr double kSiteHalfWidthPx = 3.5;
 
 // Adds (sign +1) or removes (-1) one point constraint's terms to/from 4-float blend sums of `region`.
+// `localisation_px` > 0 replaces the per-level localisation kPointLocalisation * 2^level.
 void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
-                     float sign, std::vector<float>& blend);
+                     float sign, std::vector<float>& blend, double localisation_px = 0.0);
 
 // Flattened per-type seed lists of a level: offsets/counts per type (up to kMaxPaintableTypes).
 struct SeedTable {

@@ -1,30 +1,34 @@
 // Curve constraints (Gain et al. 2015 s5.1) rasterised into the correction kernel's blend sums.
 #include "synth/curve_field.h"
 
-#include "synth/curve_geometry.h"
 #include "synth/curve_junctions.h"
-#include "synth/curve_profile.h"
 #include "synth/curve_raster.h"
 
 namespace terrasynth::synth {
 
-void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region,
-                      double meters_per_pixel0, std::vector<float>& sums) {
-    TERRASYNTH_REQUIRE(sums.size() == 3 * region.pixels(), "accumulateCurves: sums must hold 3 floats per region pixel");
-    if (curves.empty()) return;
+PinnedCurves pinCurves(const std::vector<CurveConstraint>& curves) {
     // Courses are cached by their points (the distance field's geometry changes only when the
     // horizontal shape does); widgets and junction heights are cheap and rebuilt per call.
-    std::vector<std::shared_ptr<const CourseSamples>> courses;
+    PinnedCurves pinned;
     std::vector<const CourseSamples*> raw;
-    std::vector<CurveProfile> profiles;
     for (const CurveConstraint& curve : curves) {
-        courses.push_back(cachedCourse(curve));
-        raw.push_back(courses.back().get());
-        profiles.emplace_back(curve.widgets, courses.back()->length);
+        pinned.courses.push_back(cachedCourse(curve));
+        raw.push_back(pinned.courses.back().get());
+        pinned.profiles.emplace_back(curve.widgets, pinned.courses.back()->length);
+        pinned.profiles.back().setLift(curve.lift_m);
     }
-    pinJunctions(findCrossings(raw), profiles);
+    pinJunctions(findCrossings(raw), pinned.profiles);
+    return pinned;
+}
+
+void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region,
+                      double meters_per_pixel0, std::vector<float>& sums, bool held_free_level) {
+    TERRASYNTH_REQUIRE(sums.size() == 3 * region.pixels(), "accumulateCurves: sums must hold 3 floats per region pixel");
+    if (curves.empty()) return;
+    const PinnedCurves pinned = pinCurves(curves);
     for (size_t i = 0; i < curves.size(); ++i)
-        accumulateCurve(*courses[i], profiles[i], level, region, meters_per_pixel0, true, sums);
+        accumulateCurve(*pinned.courses[i], pinned.profiles[i], level, region, meters_per_pixel0, true, sums,
+                        held_free_level);
 }
 
 }  // namespace terrasynth::synth

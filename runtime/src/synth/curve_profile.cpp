@@ -72,6 +72,15 @@ CurveProperties CurveProfile::at(double s) const {
     return p;
 }
 
+double CurveProfile::liftAt(double s) const {
+    if (lift_.empty()) return 0.0;
+    if (lift_.size() == 1) return lift_[0];
+    const double x = std::clamp(t(s), 0.0, 1.0) * static_cast<double>(lift_.size() - 1);
+    const size_t k = std::min(static_cast<size_t>(x), lift_.size() - 2);
+    const double u = x - static_cast<double>(k);
+    return lift_[k] + (static_cast<double>(lift_[k + 1]) - lift_[k]) * u;
+}
+
 bool CurveProfile::widgetNear(double s, double snap_px, double* height) const {
     for (const CurveWidget& w : widgets_) {
         if (std::abs(w.t * length_ - s) <= snap_px) {

@@ -44,6 +44,11 @@ public:
     double heightAt(double s) const { return widgetsAt(t(s)).height; }
     bool widgetNear(double s, double snap_px, double* height) const;
 
+    // The curve's lift profile (CurveConstraint::lift_m): metres added to the target on the
+    // constrained levels at s, linear between stations evenly spaced in t; 0 without one.
+    void setLift(const std::vector<float>& lift) { lift_ = lift; }
+    double liftAt(double s) const;
+
     void addPin(const JunctionPin& pin) { pins_.push_back(pin); }
     const std::vector<JunctionPin>& pins() const { return pins_; }
     double t(double s) const { return length_ > 0.0 ? s / length_ : 0.0; }
@@ -53,6 +58,7 @@ private:
     std::vector<CurveWidget> widgets_;
     std::vector<CurveProperties> values_, tangents_;  // per widget, tangents per unit t
     std::vector<JunctionPin> pins_;
+    std::vector<float> lift_;
     double length_;
 };
 

@@ -10,55 +10,64 @@
 #include <cmath>
 #include <limits>
 
+#include "synth/lift_search.h"
 #include "terrasynth/synthesizer.h"
 
 namespace terrasynth {
 namespace {
 
-// Finished level-0 height at the (real-valued) site: bilinear over the 2x2 pixels around it, whose
-// centres are at whole coordinates.
-Result<float> finishedSiteHeight(Synthesizer& synthesizer, const SynthesisParams& params, const PointConstraint& p) {
-    const double fx = std::floor(p.x), fy = std::floor(p.y);
-    const PixelWindow window{static_cast<int64_t>(fx), static_cast<int64_t>(fy), 2, 2};
+// Slopes gentler than this have no direction worth holding over 7x7 pixels: no tilt lift.
+constexpr float kMinTiltedSlopeDeg = 5.0f;
+// A site's slope holds when its 7x7 plane's rise is within this fraction of the asked rise (about
+// 6 degrees of direction at most).
+constexpr float kTiltTolerance = 0.1f;
+
+struct FinishedSite {
+    float height = 0.0f;                    // bilinear at the site
+    float rise_east = 0.0f, rise_south = 0.0f;  // plane fitted over the 7x7 pixels, metres per metre
+};
+
+// The finished site from a window of level 0 around it (equal to the full synthesis): the 2x2
+// pixels around the site, or with `plane` its 7x7 pixels and the plane fitted over them.
+Result<FinishedSite> finishedSite(Synthesizer& synthesizer, const SynthesisParams& params, const PointConstraint& p,
+                                  bool plane) {
+    const int64_t cx = std::llround(p.x), cy = std::llround(p.y);
+    const PixelWindow window = plane ? PixelWindow{cx - 3, cy - 3, 7, 7}
+                                     : PixelWindow{static_cast<int64_t>(std::floor(p.x)), static_cast<int64_t>(std::floor(p.y)), 2, 2};
     auto out = synthesizer.synthesize(window, params, 0, false);
     if (!out) return out.status();
     const Heightfield& h = out->heights;
+    FinishedSite site;
+    const double fx = std::floor(p.x), fy = std::floor(p.y);
+    const int ix = static_cast<int>(static_cast<int64_t>(fx) - window.x), iy = static_cast<int>(static_cast<int64_t>(fy) - window.y);
     const float tx = static_cast<float>(p.x - fx), ty = static_cast<float>(p.y - fy);
-    const float top = h.at(0, 0) + (h.at(1, 0) - h.at(0, 0)) * tx;
-    const float bottom = h.at(0, 1) + (h.at(1, 1) - h.at(0, 1)) * tx;
-    return top + (bottom - top) * ty;
+    const float top = h.at(ix, iy) + (h.at(ix + 1, iy) - h.at(ix, iy)) * tx;
+    const float bottom = h.at(ix, iy + 1) + (h.at(ix + 1, iy + 1) - h.at(ix, iy + 1)) * tx;
+    site.height = top + (bottom - top) * ty;
+    if (!plane) return site;
+    // Least squares over offsets -3..3: sum of dx^2 over the window is 7 * 28.
+    double east = 0.0, south = 0.0;
+    for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx) {
+            east += dx * static_cast<double>(h.at(dx + 3, dy + 3));
+            south += dy * static_cast<double>(h.at(dx + 3, dy + 3));
+        }
+    site.rise_east = static_cast<float>(east / (196.0 * h.meters_per_pixel_x));
+    site.rise_south = static_cast<float>(south / (196.0 * h.meters_per_pixel_y));
+    return site;
 }
 
-// The finished height moves with the lift between steps where a discrete candidate choice flips,
-// and other points' lifts shift it a little too (no coherence: s5.3, fig. 7b). The search takes
-// secant steps until the residual changes sign, then narrows the bracket by false position
-// (bisection when that stalls against one end).
-struct LiftSearch {
-    struct Sample { float lift = 0.0f, residual = 0.0f; int round = -1; };
-    Sample last, previous, opposite;  // opposite: the latest sample on the other side of the target
-    // A bracket older than this many rounds is dropped: other points' lifts have moved the site since.
-    static constexpr int kBracketRounds = 3;
+// The rise the point asks for, metres per metre east and south.
+std::pair<float, float> askedRise(const PointConstraint& p) {
+    const double kDegree = 3.14159265358979323846 / 180.0;
+    const double rise = std::tan(p.slope_angle_deg * kDegree), direction = p.slope_direction_deg * kDegree;
+    return {static_cast<float>(rise * std::sin(direction)), static_cast<float>(-rise * std::cos(direction))};
+}
 
-    void record(float lift, float residual, int round) {
-        const Sample now{lift, residual, round};
-        if (last.round >= 0 && (residual < 0.0f) != (last.residual < 0.0f)) opposite = last;
-        previous = last;
-        last = now;
-    }
-    float next() const {
-        if (opposite.round >= 0 && last.round - opposite.round <= kBracketRounds) {
-            const float lo = std::min(last.lift, opposite.lift), hi = std::max(last.lift, opposite.lift);
-            float lift = last.lift - last.residual * (opposite.lift - last.lift) / (opposite.residual - last.residual);
-            if (!(lift > lo + 0.1f * (hi - lo) && lift < hi - 0.1f * (hi - lo))) lift = 0.5f * (lo + hi);
-            return lift;
-        }
-        float slope = 1.0f;  // a lift of the target moves the site about as much
-        if (previous.round >= 0 && previous.lift != last.lift) {
-            const float measured = (last.residual - previous.residual) / (last.lift - previous.lift);
-            if (measured > 0.3f && measured < 3.0f) slope = measured;
-        }
-        return last.lift - last.residual / slope;
-    }
+struct PointSearch {
+    synth::LiftSearch height, east, south;
+    bool tilted = false;
+    float lift = 0.0f, tilt_east = 0.0f, tilt_south = 0.0f;  // best round
 };
 
 }  // namespace
@@ -80,27 +89,49 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftPointConstraints(Synthes
     SynthesisParams probe = params;
     probe.record_history = false;
     probe.constraints = lifted;
-    std::vector<LiftSearch> searches(points.size());
-    std::vector<float> best_lifts(points.size());
+    const double mpp = synthesizer.database().meters_per_pixel;
+    std::vector<PointSearch> searches(points.size());
+    for (size_t i : moving) {
+        // Slopes are held over the site's own pixels only where the free levels hold the site.
+        searches[i].tilted = params.hold_on_free_levels && points[i].slope_angle_deg >= kMinTiltedSlopeDeg;
+        if (!searches[i].tilted) points[i].tilt_east = points[i].tilt_south = 0.0f;
+    }
     float best_worst = std::numeric_limits<float>::infinity();
     for (int round = 0; round < options.max_rounds && !moving.empty(); ++round) {
+        // Worst miss in metres: the height at the site, or the plane's error at the 7x7's edge.
         float worst = 0.0f;
+        bool held = true;
         for (size_t i : moving) {
-            auto height = finishedSiteHeight(synthesizer, probe, points[i]);
-            if (!height) return height.status().withContext("point constraint " + std::to_string(i));
-            const float residual = height.value() - points[i].height_m;
-            searches[i].record(points[i].lift_m, residual, round);
+            PointConstraint& p = points[i];
+            auto site = finishedSite(synthesizer, probe, p, searches[i].tilted);
+            if (!site) return site.status().withContext("point constraint " + std::to_string(i));
+            const float residual = site->height - p.height_m;
+            searches[i].height.record(p.lift_m, residual, round);
             worst = std::max(worst, std::fabs(residual));
+            held = held && std::fabs(residual) <= options.tolerance_m;
+            if (!searches[i].tilted) continue;
+            const auto [east, south] = askedRise(p);
+            const float miss_east = site->rise_east - east, miss_south = site->rise_south - south;
+            searches[i].east.record(p.tilt_east, miss_east, round);
+            searches[i].south.record(p.tilt_south, miss_south, round);
+            const float miss = std::hypot(miss_east, miss_south);
+            worst = std::max(worst, static_cast<float>(miss * 3.0 * mpp));
+            held = held && miss <= kTiltTolerance * std::hypot(east, south);
         }
         // The lifts of a whole round were synthesized together, so the best round is what is kept.
         if (worst < best_worst) {
             best_worst = worst;
-            for (size_t i : moving) best_lifts[i] = points[i].lift_m;
+            for (size_t i : moving) searches[i].lift = points[i].lift_m, searches[i].tilt_east = points[i].tilt_east,
+                                    searches[i].tilt_south = points[i].tilt_south;
         }
-        if (worst <= options.tolerance_m) break;
-        for (size_t i : moving) points[i].lift_m = searches[i].next();
+        if (held) break;
+        for (size_t i : moving) {
+            points[i].lift_m = searches[i].height.next();
+            if (searches[i].tilted) points[i].tilt_east = searches[i].east.next(), points[i].tilt_south = searches[i].south.next();
+        }
     }
-    for (size_t i : moving) points[i].lift_m = best_lifts[i];
+    for (size_t i : moving)
+        points[i].lift_m = searches[i].lift, points[i].tilt_east = searches[i].tilt_east, points[i].tilt_south = searches[i].tilt_south;
     return std::shared_ptr<const SynthesisConstraints>(std::move(lifted));
 }
 

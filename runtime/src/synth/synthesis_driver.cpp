@@ -30,10 +30,14 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
     if (params.constraints) {
         for (size_t i = 0; i < params.constraints->points.size(); ++i) {
             const PointConstraint& p = params.constraints->points[i];
-            if (!(p.radius_px > 0.0f) || !std::isfinite(p.height_m) || !std::isfinite(p.lift_m) || !(p.slope_angle_deg >= 0.0f && p.slope_angle_deg <= 80.0f))
+            if (!(p.radius_px > 0.0f) || !std::isfinite(p.height_m) || !std::isfinite(p.lift_m) || !std::isfinite(p.tilt_east) ||
+                !std::isfinite(p.tilt_south) || !(p.slope_angle_deg >= 0.0f && p.slope_angle_deg <= 80.0f))
                 return Status::error("point constraint " + std::to_string(i) +
-                                     ": radius must be > 0, height and lift finite, slope angle 0..80 degrees");
+                                     ": radius must be > 0, height and lifts finite, slope angle 0..80 degrees");
         }
+        for (size_t i = 0; i < params.constraints->curves.size(); ++i)
+            for (float lift : params.constraints->curves[i].lift_m)
+                if (!std::isfinite(lift)) return Status::error("curve constraint " + std::to_string(i) + ": lift must be finite");
         if (!params.constraints->types.empty() && db.type_names.size() > static_cast<size_t>(kMaxPaintableTypes))
             return Status::error("type painting supports databases of at most " + std::to_string(kMaxPaintableTypes) +
                                  " types; this one has " + std::to_string(db.type_names.size()));
@@ -55,7 +59,8 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         const LevelRegion& region = plan.regions[level];
         Status begun = steps.beginLevel(
             level, region,
-            constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, region, db.meters_per_pixel),
+            constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, params.hold_on_free_levels,
+                                region, db.meters_per_pixel),
             params.previous ? coherenceCodes(params.coherence.get(), level, region) : std::vector<uint8_t>(),
             params.seed);
         if (!begun) return begun;
