@@ -514,6 +514,31 @@ int runPastes(const Args& args, Synthesizer& s) {
     return failures ? 1 : 0;
 }
 
+// Synthesis time of a 306^2 window holding a 260 px curve, with and without the free levels held.
+int runFieldCost(const Args& args, Synthesizer& s) {
+    auto c = std::make_shared<SynthesisConstraints>();
+    CurveConstraint curve;
+    curve.course = {{400.0, 500.0}, {512.0, 470.0}, {630.0, 520.0}};
+    CurveWidget w;
+    w.height_m = 1500.0f, w.left_gradient = -0.15f, w.right_gradient = -0.2f, w.left_reach_px = w.right_reach_px = 40.0f;
+    curve.widgets = {w};
+    c->curves.push_back(curve);
+    for (int hold = 0; hold < 2; ++hold) {
+        SynthesisParams params;
+        params.constraints = c;
+        params.hold_on_free_levels = hold != 0;
+        std::vector<float> times;
+        for (int k = 0; k < args.cases; ++k) {
+            const double start = now();
+            auto out = s.synthesize({360, 330, 306, 306}, params);
+            if (!out) return 1;
+            times.push_back(static_cast<float>(now() - start));
+        }
+        std::printf("hold %d: median %.1f ms\n", hold, 1000 * quantile(times, 0.5));
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -539,5 +564,6 @@ int main(int argc, char** argv) {
     if (args.what == "detail") return runDetail(args, *s.value());
     if (args.what == "points") return runPoints(args, *s.value());
     if (args.what == "pastes") return runPastes(args, *s.value());
+    if (args.what == "fieldcost") return runFieldCost(args, *s.value());
     return runCurves(args, *s.value());
 }

@@ -2,7 +2,9 @@
 //
 // Point and curve constraints (s5.1, eq. 8-9) and type painting (s5.2) act inside the correction
 // kernel, never as a post-hoc deformation, and are disabled on the finest two levels as in the
-// paper; freeze and pastes (s5.3) are driven through coherent re-synthesis (incremental.h).
+// paper, but for the geometric constraints' own pixels when their heights are held
+// (SynthesisParams::hold_on_free_levels); freeze and pastes (s5.3) are driven through coherent
+// re-synthesis (incremental.h).
 // Coordinates are global pixels of level 0 (the project's grid); heights in metres.
 #pragma once
 

@@ -68,9 +68,9 @@ public:
     Status applyEdit(std::shared_ptr<const SynthesisConstraints> next, PixelWindow* changed = nullptr);
     // Copy-paste (s5.3, fig. 8): the polygon `source` (level-0 pixels of the terrain's global grid,
     // or of exemplar `exemplar` when >= 0) is moved by (dx, dy) pixels and raised by
-    // `height_offset_m`. The pasted coordinates are written for every level and pass and frozen but
-    // for a rim of kPasteBlendPx, and a Free band of kCoherentBand pixels around the target (with the
-    // rim) lets the surroundings blend in. An
+    // `height_offset_m`. The pasted coordinates are written for every pass of level 0 and frozen but
+    // for a rim of kPasteBlendPx, and for every pass of the coarser levels inside that rim; a Free
+    // band of kCoherentBand pixels around the target (with the rim) lets the surroundings blend in. An
     // exemplar paste needs its polygon inside the exemplar at level 0 only (its pixel centres in the
     // exemplar as resampled to the database spacing): the level-0 pixels are exactly the exemplar's
     // heights + offset; on coarser levels, where a small exemplar may be narrower than the polygon,

@@ -156,21 +156,29 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftPointConstraints(Synthes
 // the finished level-0 heights along the course land on the widgets' heights (junctions pinned,
 // terrasynth/curve_course.h): each station's residual is the mean of the finished course's
 // residuals around it (weighted like the linear interpolation between stations), measured by
-// synthesizing small windows along the course (equal to the full synthesis); each station is then
-// searched like a point's lift. The stations' residuals shrink to the detail of the free finest
-// levels, which averages out along the course (docs/curves.md: measured figures). The round with
-// the smallest mean |residual| along the moving part of the courses is kept. Existing lift
-// profiles are the starting point (resampled when the station count differs). Pass the same params
+// synthesizing small windows along the course (equal to the full synthesis), and each station is
+// searched like a point's lift. What is left is the detail of the free finest levels, which the lift
+// cannot follow (docs/curves.md: measured figures). The round with the smallest mean |residual|
+// along the moving part of the courses is kept; when that is the first round and the lifts kept
+// their station counts, the given constraints are returned (the same pointer). Existing lift
+// profiles are the starting point (resampled to the station count). Pass the same params
 // (coherence, history, point lifts) as the synthesis that will use the result.
-// Cost: per round, about a quarter of a synthesis of the courses' bounding boxes (windows of
-// 64 px of course plus the synthesis margins). Errors: those of synthesize().
+// Cost: per round, windows of 64 px of course plus the synthesis margins along every moving course
+// (about a quarter of a synthesis of the courses' bounding boxes). Errors: those of synthesize().
 struct CurveLiftOptions {
-    float tolerance_m = 1.0f;  // stop once every moving station's residual is within this
-    int max_rounds = 6;        // >= 1; 1 only measures
+    // Stop once the median |finished - asked| along the moving courses is within this (metres);
+    // 0 = search max_rounds.
+    float tolerance_m = 0.0f;
+    int max_rounds = 6;               // >= 1; 1 only measures
     double station_spacing_px = 8.0;  // > 0, level-0 pixels of arc length between stations
     // Lift only the stations that lie in this level-0 window (an edit's area); the others keep
     // their lift. Unset = all stations.
     std::optional<PixelWindow> stations_within;
+    // Finished level-0 heights already synthesized with `params` (an edit's window; pixel (0, 0) is
+    // global pixel (measured_x, measured_y)): the first round reads the course from them where they
+    // hold it instead of synthesizing. Not owned; may be null.
+    const Heightfield* measured = nullptr;
+    int64_t measured_x = 0, measured_y = 0;
 };
 Result<std::shared_ptr<const SynthesisConstraints>> liftCurveConstraints(Synthesizer& synthesizer,
                                                                          const SynthesisParams& params,

@@ -9,14 +9,19 @@ Result<std::shared_ptr<const SynthesisConstraints>> projectConstraints(const Pro
     return std::make_shared<const SynthesisConstraints>(std::move(parsed.value()));
 }
 
+SynthesisParams synthesisOf(const Project& project) {
+    SynthesisParams params = project.synthesis;
+    params.hold_on_free_levels = project.hold_point_heights;
+    return params;
+}
+
 Result<SynthesisParams> referenceParams(Synthesizer& synthesizer, const Project& project,
                                         std::shared_ptr<const SynthesisConstraints> constraints) {
-    SynthesisParams params = project.synthesis;
+    SynthesisParams params = synthesisOf(project);
     params.constraints = std::move(constraints);
     params.previous.reset();
     params.coherence.reset();
     params.record_history = false;
-    params.hold_on_free_levels = project.hold_point_heights;
     if (project.hold_point_heights && params.constraints && !params.constraints->points.empty()) {
         auto lifted = liftPointConstraints(synthesizer, params);
         if (!lifted) return lifted.status().withContext(project.path + ": constraints.points");

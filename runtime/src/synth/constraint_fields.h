@@ -15,7 +15,8 @@ struct LevelConstraints {
     // Per region pixel, 4 floats: the inverse-distance blend sums of s5.1 over every point and curve
     // constraint reaching it (sum b, sum b*h_t in metres, sum b*d in level-0 pixels, 0). Keeping
     // sums means one constraint can be subtracted, changed and added back without re-evaluating the
-    // others. Empty when no constraint reaches the region, and on the finest two levels.
+    // others. Empty when no constraint reaches the region, and on the finest two levels unless
+    // they hold the constraints' own pixels (constraintsForLevel).
     std::vector<float> blend;
     // One mask per region pixel (bit t = type t allowed; 0 = any type). Empty when nothing painted
     // reaches the region or on the finest two levels. R^i is the union of the painted level-0 types

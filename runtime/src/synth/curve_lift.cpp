@@ -59,12 +59,30 @@ std::pair<double, double> courseAt(const synth::CourseSamples& c, double s) {
     return {c.x[i - 1] + (c.x[i] - c.x[i - 1]) * u, c.y[i - 1] + (c.y[i] - c.y[i - 1]) * u};
 }
 
-// Finished level-0 heights at every probe (bilinear between the pixel centres around it), from one
-// synthesis per tile of the global grid holding probes: the window is the probes' bounding box.
-Status measureProbes(Synthesizer& synthesizer, const SynthesisParams& params, std::vector<CourseProbe>& probes) {
+// Bilinear height of level-0 field `h` (pixel (0, 0) at global (x0, y0)) at global (x, y); false
+// where the field does not hold the 2x2 pixels around it.
+bool finishedAt(const Heightfield& h, int64_t x0, int64_t y0, double x, double y, float* out) {
+    const double fx = std::floor(x), fy = std::floor(y);
+    const int64_t ix = static_cast<int64_t>(fx) - x0, iy = static_cast<int64_t>(fy) - y0;
+    if (ix < 0 || iy < 0 || ix + 1 >= h.width || iy + 1 >= h.height) return false;
+    const int cx = static_cast<int>(ix), cy = static_cast<int>(iy);
+    const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
+    const float top = h.at(cx, cy) + (h.at(cx + 1, cy) - h.at(cx, cy)) * tx;
+    const float bottom = h.at(cx, cy + 1) + (h.at(cx + 1, cy + 1) - h.at(cx, cy + 1)) * tx;
+    *out = top + (bottom - top) * ty;
+    return true;
+}
+
+// Finished level-0 heights at every probe: read from `measured` where it holds them, otherwise from
+// one synthesis per tile of the global grid holding probes (the window is their bounding box).
+Status measureProbes(Synthesizer& synthesizer, const SynthesisParams& params, const CurveLiftOptions& measured,
+                     std::vector<CourseProbe>& probes) {
     std::map<std::pair<int64_t, int64_t>, std::vector<size_t>> tiles;
     auto tileOf = [](double v) { return static_cast<int64_t>(std::floor(std::floor(v) / kProbeTilePx)); };
-    for (size_t i = 0; i < probes.size(); ++i) tiles[{tileOf(probes[i].x), tileOf(probes[i].y)}].push_back(i);
+    for (size_t i = 0; i < probes.size(); ++i)
+        if (!measured.measured || !finishedAt(*measured.measured, measured.measured_x, measured.measured_y, probes[i].x,
+                                               probes[i].y, &probes[i].finished))
+            tiles[{tileOf(probes[i].x), tileOf(probes[i].y)}].push_back(i);
     for (const auto& [tile, members] : tiles) {
         int64_t x0 = INT64_MAX, y0 = INT64_MAX, x1 = INT64_MIN, y1 = INT64_MIN;
         for (size_t i : members) {
@@ -74,18 +92,15 @@ Status measureProbes(Synthesizer& synthesizer, const SynthesisParams& params, st
         const PixelWindow window{x0, y0, static_cast<int>(x1 - x0 + 1), static_cast<int>(y1 - y0 + 1)};
         auto out = synthesizer.synthesize(window, params, 0, false);
         if (!out) return out.status();
-        const Heightfield& h = out->heights;
-        for (size_t i : members) {
-            CourseProbe& p = probes[i];
-            const double fx = std::floor(p.x), fy = std::floor(p.y);
-            const int ix = static_cast<int>(static_cast<int64_t>(fx) - x0), iy = static_cast<int>(static_cast<int64_t>(fy) - y0);
-            const float tx = static_cast<float>(p.x - fx), ty = static_cast<float>(p.y - fy);
-            const float top = h.at(ix, iy) + (h.at(ix + 1, iy) - h.at(ix, iy)) * tx;
-            const float bottom = h.at(ix, iy + 1) + (h.at(ix + 1, iy + 1) - h.at(ix, iy + 1)) * tx;
-            p.finished = top + (bottom - top) * ty;
-        }
+        for (size_t i : members) finishedAt(out->heights, x0, y0, probes[i].x, probes[i].y, &probes[i].finished);
     }
     return Status::ok();
+}
+
+float medianOf(std::vector<float> v) {
+    if (v.empty()) return 0.0f;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
 }
 
 // The stations of one curve and their searches.
@@ -112,6 +127,7 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftCurveConstraints(Synthes
     // Stations (moving ones: in the window) and the probes that inform them.
     std::vector<CurveStations> stations;
     std::vector<CourseProbe> probes;
+    bool resampled = false;
     for (size_t c = 0; c < curves.size(); ++c) {
         const synth::CourseSamples& course = *pinned.courses[c];
         if (course.segments() == 0) continue;
@@ -128,6 +144,7 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftCurveConstraints(Synthes
             any = any || st.moving[k];
         }
         if (!any) continue;
+        resampled = resampled || curves[c].lift_m.size() != n;
         curves[c].lift_m = resampledLift(curves[c].lift_m, n);
         for (size_t i = 0; i < course.x.size(); ++i) {
             const double x = course.s[i] / course.length * static_cast<double>(n - 1);
@@ -145,36 +162,44 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftCurveConstraints(Synthes
         st.best = curves[c].lift_m;
         stations.push_back(std::move(st));
     }
-    if (stations.empty()) return std::shared_ptr<const SynthesisConstraints>(std::move(lifted));
+    if (stations.empty()) return params.constraints;
 
     SynthesisParams probe = params;
     probe.record_history = false;
     probe.constraints = lifted;
     float best_score = std::numeric_limits<float>::infinity();
+    int best_round = -1;
     std::vector<size_t> station_of_curve(curves.size(), SIZE_MAX);
     for (size_t i = 0; i < stations.size(); ++i) station_of_curve[stations[i].curve] = i;
     for (int round = 0; round < options.max_rounds; ++round) {
-        if (Status s = measureProbes(synthesizer, probe, probes); !s) return s.withContext("curve constraints");
+        // Heights synthesized already are the given lifts' only (the first round, nothing resampled).
+        CurveLiftOptions given;
+        if (round == 0 && !resampled) given = options;
+        if (Status s = measureProbes(synthesizer, probe, given, probes); !s) return s.withContext("curve constraints");
         // Per station: the residual averaged with the interpolation's weights.
         std::vector<std::vector<double>> sum(stations.size()), weight(stations.size());
         for (size_t i = 0; i < stations.size(); ++i) {
             sum[i].assign(stations[i].moving.size(), 0.0);
             weight[i].assign(stations[i].moving.size(), 0.0);
         }
+        std::vector<float> misses;
+        misses.reserve(probes.size());
         double total = 0.0;
         for (const CourseProbe& p : probes) {
             const size_t i = station_of_curve[p.curve];
             const double r = static_cast<double>(p.finished) - p.target;
             total += std::fabs(r);
+            misses.push_back(static_cast<float>(std::fabs(r)));
             sum[i][p.station] += (1.0 - p.weight) * r, weight[i][p.station] += 1.0 - p.weight;
             sum[i][p.station + 1] += p.weight * r, weight[i][p.station + 1] += p.weight;
         }
+        // The lifts of a whole round were synthesized together, so the best round is what is kept.
         const float score = static_cast<float>(total / static_cast<double>(probes.size()));
         if (score < best_score) {
-            best_score = score;
+            best_score = score, best_round = round;
             for (CurveStations& st : stations) st.best = curves[st.curve].lift_m;
         }
-        float worst = 0.0f;
+        if (medianOf(std::move(misses)) <= options.tolerance_m || round + 1 == options.max_rounds) break;
         for (size_t i = 0; i < stations.size(); ++i) {
             CurveStations& st = stations[i];
             const size_t n = st.moving.size();
@@ -186,19 +211,14 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftCurveConstraints(Synthes
             std::vector<float>& lift = curves[st.curve].lift_m;
             for (size_t k = 0; k < n; ++k) {
                 if (!st.moving[k] || weight[i][k] <= 0.0) continue;
-                const float residual = static_cast<float>(sum[i][k] / weight[i][k]);
-                st.searches[k].record(lift[k], residual, round);
-                worst = std::max(worst, std::fabs(residual));
+                st.searches[k].record(lift[k], static_cast<float>(sum[i][k] / weight[i][k]), round);
+                lift[k] = st.searches[k].next();
             }
-        }
-        if (worst <= options.tolerance_m || round + 1 == options.max_rounds) break;
-        for (CurveStations& st : stations) {
-            std::vector<float>& lift = curves[st.curve].lift_m;
-            for (size_t k = 0; k < st.moving.size(); ++k)
-                if (st.moving[k] && st.searches[k].last.round == round) lift[k] = st.searches[k].next();
             if (st.closed) lift.back() = lift.front();
         }
     }
+    // Unchanged lifts give back the given constraints, so a caller can keep what it synthesized.
+    if (best_round == 0 && !resampled) return params.constraints;
     for (CurveStations& st : stations) curves[st.curve].lift_m = st.best;
     return std::shared_ptr<const SynthesisConstraints>(std::move(lifted));
 }

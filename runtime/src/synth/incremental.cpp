@@ -17,6 +17,10 @@
 namespace terrasynth {
 namespace {
 
+// An edit keeps the curves' lift profiles it starts from while the median miss along the edited
+// courses stays within this share of the extent's relief (the guarantee is 1%, docs/curves.md).
+constexpr float kCurveHoldMedian = 0.005f;
+
 // Copies the window's history into the extent's, level by level, pass by pass, by global position.
 // Only the window's valid part at each level (its region minus the margin) is trusted. `touching`
 // is told each level's rectangle (global pixels of that level) before it is written.
@@ -238,16 +242,26 @@ Status IncrementalTerrain::resynthesize(const PixelWindow& free_area, const std:
         if (!lifted) return lifted.status();
         params.constraints = std::move(lifted.value());
     }
-    if (lift_points && params.constraints && !params.constraints->curves.empty()) {
-        CurveLiftOptions lift;
-        lift.stations_within = free_area;
-        auto lifted = liftCurveConstraints(*synthesizer_, params, lift);
-        if (!lifted) return lifted.status();
-        params.constraints = std::move(lifted.value());
-    }
     params.record_history = true;
     auto out = synthesizer_->synthesize(window, params, 0, false);
     if (!out) return out.status();
+    if (lift_points && params.constraints && !params.constraints->curves.empty()) {
+        // The curves' lift profiles (kept from before the edit) are searched further only when the
+        // edited courses miss their heights by more than kCurveHoldMedian of the relief: dragging a
+        // widget usually keeps them good, and then the edit costs one synthesis.
+        CurveLiftOptions lift;
+        lift.stations_within = free_area;
+        const HeightRange relief = heightRange(heights_);
+        lift.tolerance_m = kCurveHoldMedian * (relief.max - relief.min);
+        lift.measured = &out->heights, lift.measured_x = window.x, lift.measured_y = window.y;
+        auto lifted = liftCurveConstraints(*synthesizer_, params, lift);
+        if (!lifted) return lifted.status();
+        if (lifted.value() != params.constraints) {
+            params.constraints = std::move(lifted.value());
+            out = synthesizer_->synthesize(window, params, 0, false);
+            if (!out) return out.status();
+        }
+    }
     record(0, window.x - extent_.x, window.y - extent_.y, window.width, window.height);
     for (int y = 0; y < window.height; ++y)
         for (int x = 0; x < window.width; ++x)
@@ -292,11 +306,24 @@ PixelWindow polygonBox(const std::vector<std::pair<double, double>>& polygon, co
                             clip);
 }
 
+// Distance from (x, y) to the nearest edge of a closed polygon.
+double distanceToPolygon(const std::vector<std::pair<double, double>>& poly, double x, double y) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+        const auto [ax, ay] = poly[j];
+        const auto [bx, by] = poly[i];
+        const double ex = bx - ax, ey = by - ay, len2 = ex * ex + ey * ey;
+        const double u = len2 > 0.0 ? std::clamp(((x - ax) * ex + (y - ay) * ey) / len2, 0.0, 1.0) : 0.0;
+        best = std::min(best, std::hypot(x - ax - u * ex, y - ay - u * ey));
+    }
+    return best;
+}
+
 // Pixels of one history level whose centres (in level-0 coordinates) lie inside `polygon`, visited
 // row by row as (x, y, row-major index).
 template <class Visit>
 void forEachLevelPixelInside(const SynthesisHistory::Level& l, int level, const std::vector<std::pair<double, double>>& polygon,
-                             Visit&& visit) {
+                             Visit&& visit, double inset = 0.0) {
     const double cell = std::ldexp(1.0, level);
     const int64_t scale = int64_t(1) << level;
     const PixelWindow box = polygonBox(polygon, {l.x * scale, l.y * scale, static_cast<int>(l.width * scale),
@@ -309,7 +336,8 @@ void forEachLevelPixelInside(const SynthesisHistory::Level& l, int level, const 
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
             const double px = (l.x + x + 0.5) * cell - 0.5, py = (l.y + y + 0.5) * cell - 0.5;
-            if (insidePolygon(polygon, px, py)) visit(x, y, static_cast<size_t>(y) * l.width + x);
+            if (insidePolygon(polygon, px, py) && (inset <= 0.0 || distanceToPolygon(polygon, px, py) >= inset))
+                visit(x, y, static_cast<size_t>(y) * l.width + x);
         }
 }
 
@@ -327,19 +355,6 @@ long mirroredIntoInterior(long v, int size) {
 }  // namespace
 
 namespace {
-
-// Distance from (x, y) to the nearest edge of a closed polygon.
-double distanceToPolygon(const std::vector<std::pair<double, double>>& poly, double x, double y) {
-    double best = std::numeric_limits<double>::infinity();
-    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-        const auto [ax, ay] = poly[j];
-        const auto [bx, by] = poly[i];
-        const double ex = bx - ax, ey = by - ay, len2 = ex * ex + ey * ey;
-        const double u = len2 > 0.0 ? std::clamp(((x - ax) * ex + (y - ay) * ey) / len2, 0.0, 1.0) : 0.0;
-        best = std::min(best, std::hypot(x - ax - u * ex, y - ay - u * ey));
-    }
-    return best;
-}
 
 // Level-0 pixels of `extent` whose centres lie inside `polygon`, at least `inset` from its edges.
 std::vector<uint8_t> polygonMask(const std::vector<std::pair<double, double>>& polygon, const PixelWindow& extent,
@@ -446,7 +461,7 @@ Status IncrementalTerrain::paste(const Paste& paste) {
                                       l.passes[pass].v[f] + paste.height_offset_m});
                 }
             }
-        });
+        }, level > 0 ? kPasteBlendPx : 0.0);  // coarse levels: the frozen part only, the rim blends there too
         if (!failed) return failed;
     }
     for (const Write& w : writes) {
