@@ -405,6 +405,16 @@ Status IncrementalTerrain::paste(const Paste& paste) {
     const ExemplarDatabase& db = synthesizer_->database();
     if (paste.exemplar >= static_cast<int>(db.exemplars.size()))
         return Status::error("paste: exemplar " + std::to_string(paste.exemplar) + " does not exist");
+    if (paste.exemplar >= 0) {
+        // The whole polygon lies inside the exemplar at level 0 (its pixels' areas, as resampled to
+        // the database spacing), whatever part of it the extent shows.
+        const AtlasRect& r = db.levels[0].rects[paste.exemplar];
+        for (const auto& [x, y] : paste.source)
+            if (!(x >= -0.5 && y >= -0.5 && x <= r.width - 0.5 && y <= r.height - 0.5))
+                return Status::error("paste: source polygon leaves exemplar " + db.exemplars[paste.exemplar].name + " (" +
+                                     std::to_string(r.width) + "x" + std::to_string(r.height) +
+                                     " pixels at the database spacing)");
+    }
     const auto target = targetPolygon(paste);
     const PixelWindow box = polygonBox(target, extent_);
     if (box.empty()) return Status::error("paste: the target polygon lies outside the terrain's extent");
