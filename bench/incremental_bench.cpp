@@ -39,7 +39,13 @@ static void BM_PointEditRadius64On1024(benchmark::State& state) {
     const PointConstraint& p = terrain->params().constraints->points[0];
     state.counters["site_error_m"] = std::fabs(terrain->heights().at(512, 512) - p.height_m);
 }
-BENCHMARK(BM_PointEditRadius64On1024)->ArgName("hold")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PointEditRadius64On1024)
+    ->ArgName("hold")
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 // A curve constraint's widget dragged up and down on a 1024^2 terrain, as projects synthesize it
 // (hold_point_heights: courses held on the free levels, lift profiles). The course (about 260 px, a
@@ -88,6 +94,12 @@ static void BM_CurveWidgetEditOn1024(benchmark::State& state) {
     std::sort(errors.begin(), errors.end());
     state.counters["course_median_error_m"] = errors.empty() ? 0.0 : errors[errors.size() / 2];
 }
-BENCHMARK(BM_CurveWidgetEditOn1024)->ArgName("lift")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CurveWidgetEditOn1024)
+    ->ArgName("lift")
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 BENCHMARK_MAIN();
