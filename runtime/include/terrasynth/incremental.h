@@ -43,7 +43,7 @@ public:
     static constexpr int kCoherentBand = 32;
     // A paste's rim: its pixels closer than this to the target polygon's edge are written but not
     // frozen, and re-synthesized Free with the band around the paste, so the paste and its
-    // surroundings meet without a step (measured: docs/project-format.md, pastes).
+    // surroundings meet without a step (measured: docs/project-format.md, `constraints.pastes`).
     static constexpr int kPasteBlendPx = 6;
 
     // Applies new constraints. `changed` is the level-0 rectangle (global pixels) the change can
