@@ -13,14 +13,20 @@
 
 using namespace terrasynth;
 
-// state.range(0): 1 = lift the point so its site lands on its height (the default), 0 = the paper's
-// plain target.
-static void BM_PointEditRadius64On1024(benchmark::State& state) {
+// The synthesizer of the shipped default exemplars (database cached in the build folder), or an
+// error message.
+static Result<std::unique_ptr<Synthesizer>> defaultSynthesizer() {
     ::setenv("POCL_CACHE_DIR", TERRASYNTH_BENCH_POCL_CACHE, 0);
     auto db = loadOrBuildDatabase({std::string(TERRASYNTH_BENCH_DATA_DIR) + "/exemplars"}, {},
                                   std::string(TERRASYNTH_BENCH_POCL_CACHE) + "/../bench_default.tsdb");
-    if (!db) return state.SkipWithError(db.message().c_str());
-    auto s = Synthesizer::create(db.value());
+    if (!db) return db.status();
+    return Synthesizer::create(db.value());
+}
+
+// state.range(0): 1 = lift the point so its site lands on its height (the default), 0 = the paper's
+// plain target.
+static void BM_PointEditRadius64On1024(benchmark::State& state) {
+    auto s = defaultSynthesizer();
     if (!s) return state.SkipWithError(s.message().c_str());
     auto terrain = IncrementalTerrain::create(*s.value(), {0, 0, 1024, 1024}, SynthesisParams{});
     if (!terrain) return state.SkipWithError(terrain.message().c_str());
@@ -52,11 +58,7 @@ BENCHMARK(BM_PointEditRadius64On1024)
 // spline through 3 points) stays put, so every edit keeps the curve's lift profile as its start.
 // state.range(0): 1 = lift the profile (the default), 0 = keep it as it is.
 static void BM_CurveWidgetEditOn1024(benchmark::State& state) {
-    ::setenv("POCL_CACHE_DIR", TERRASYNTH_BENCH_POCL_CACHE, 0);
-    auto db = loadOrBuildDatabase({std::string(TERRASYNTH_BENCH_DATA_DIR) + "/exemplars"}, {},
-                                  std::string(TERRASYNTH_BENCH_POCL_CACHE) + "/../bench_default.tsdb");
-    if (!db) return state.SkipWithError(db.message().c_str());
-    auto s = Synthesizer::create(db.value());
+    auto s = defaultSynthesizer();
     if (!s) return state.SkipWithError(s.message().c_str());
     SynthesisParams params;
     params.hold_on_free_levels = true;
@@ -88,7 +90,7 @@ static void BM_CurveWidgetEditOn1024(benchmark::State& state) {
     const PixelWindow w = terrain->lastWindow();
     state.counters["window_pixels"] = static_cast<double>(w.width) * w.height;
     const CurveHold hold = measureCurveHold(terrain->heights(), 0, 0, terrain->params().constraints->curves, 0,
-                                            db.value()->meters_per_pixel);
+                                            s.value()->database().meters_per_pixel);
     std::vector<float> errors = hold.height_error_m;
     for (float& e : errors) e = std::fabs(e);
     std::sort(errors.begin(), errors.end());

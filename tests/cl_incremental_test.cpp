@@ -138,6 +138,8 @@ TEST(Incremental, DraggedCurveWidgetKeepsTheCourseOnItsHeights) {
         const PixelWindow w = terrain->lastWindow();
         for (int y = 0; y < 512; ++y)
             for (int x = 0; x < 512; ++x)
-                if (!w.contains(x, y)) ASSERT_EQ(after.at(x, y), before.at(x, y)) << x << "," << y;
+                if (!w.contains(x, y)) {
+                    ASSERT_EQ(after.at(x, y), before.at(x, y)) << x << "," << y;
+                }
     }
 }
