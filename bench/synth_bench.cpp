@@ -63,9 +63,35 @@ void synthesize(benchmark::State& state, SynthesisBackend backend) {
 void BM_SynthesizeOpenCL(benchmark::State& state) { synthesize(state, SynthesisBackend::OpenCL); }
 void BM_SynthesizeReference(benchmark::State& state) { synthesize(state, SynthesisBackend::Reference); }
 
+// Point lifting (issue 20: about 80 ms per point before sites shared windows): range(0) random point
+// constraints over a range(1)^2 extent, lifted onto their heights (up to 10 rounds).
+void BM_LiftPoints(benchmark::State& state) {
+    const int count = static_cast<int>(state.range(0)), size = static_cast<int>(state.range(1));
+    auto constraints = std::make_shared<SynthesisConstraints>();
+    uint32_t h = 12345;
+    auto next = [&] { return (h = h * 1664525u + 1013904223u) / 4294967296.0; };
+    for (int i = 0; i < count; ++i) {
+        PointConstraint p;
+        p.x = 8 + (size - 16) * next(), p.y = 8 + (size - 16) * next();
+        p.height_m = static_cast<float>(1500 + 1000 * next());
+        p.radius_px = 32.0f;
+        constraints->points.push_back(p);
+    }
+    SynthesisParams params;
+    params.constraints = constraints;
+    Synthesizer& s = synthesizer(SynthesisBackend::OpenCL);
+    for (auto _ : state) {
+        auto lifted = liftPointConstraints(s, params);
+        if (!lifted) state.SkipWithError(lifted.message().c_str());
+        benchmark::DoNotOptimize(lifted);
+    }
+}
+
 }  // namespace
 
 BENCHMARK(BM_SynthesizeOpenCL)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SynthesizeReference)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+BENCHMARK(BM_LiftPoints)->Args({100, 256})->Args({1000, 1024})->Args({10000, 1024})->Unit(benchmark::kMillisecond)
+    ->UseRealTime()->Iterations(1);
 
 BENCHMARK_MAIN();

@@ -189,4 +189,28 @@ BENCHMARK(BM_FlightMerge_Terrain)->Unit(benchmark::kMillisecond)->UseRealTime()-
 
 }  // namespace
 
+// TerrainNode::heightAt (issue 15 target: <= 50 us): the finest resident tile's vertices at a random
+// point, with 24 level-0 tiles and their coarser levels resident.
+void BM_HeightAt(benchmark::State& state) {
+    TerrainNodeOptions o;
+    o.threads = 2;
+    osg::ref_ptr<TerrainNode> node = new TerrainNode(dem().source, dem().field.meters_per_pixel_x, o);
+    const PixelWindow region{0, 0, 6 * 256, 4 * 256};
+    for (int level : {5, 2, 0})
+        if (Status st = node->preload(region, level); !st) state.SkipWithError(st.message().c_str());
+    const double mpp = dem().field.meters_per_pixel_x;
+    uint64_t rng = 88172645463325252ull;
+    size_t answered = 0;
+    for (auto _ : state) {
+        rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
+        const double u = static_cast<double>(rng % 1000000) * 1e-6, v = static_cast<double>((rng >> 20) % 1000000) * 1e-6;
+        const double x = u * region.width * mpp, y = -v * region.height * mpp;
+        const std::optional<float> h = node->heightAt(x, y);
+        answered += h.has_value();
+        benchmark::DoNotOptimize(h);
+    }
+    state.counters["answered"] = static_cast<double>(answered) / std::max<int64_t>(1, state.iterations());
+}
+BENCHMARK(BM_HeightAt)->Unit(benchmark::kMicrosecond);
+
 BENCHMARK_MAIN();

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "command_registry.h"
+#include "outputs.h"
 #include "terrasynth/database.h"
 
 namespace terrasynth::cli {
@@ -18,6 +19,8 @@ struct DbBuildArgs {
 };
 
 void runDbBuild(const DbBuildArgs& args) {
+    // Refuse an unwritable output before spending minutes on the build.
+    if (Status s = checkOutputs({{"-o", args.output}}); !s) return fail("db build", s.message());
     DatabaseBuildOptions options;
     options.levels = args.levels;
     options.meters_per_pixel = args.meters_per_pixel;
@@ -57,7 +60,7 @@ void addDbCommand(CLI::App& app) {
                       "Common spacing; default: the coarsest exemplar's")->check(CLI::NonNegativeNumber);
     build->add_option("--threads", args->threads, "Worker threads (0 = all cores)");
     build->add_flag("-q,--quiet", args->quiet, "No progress output");
-    build->callback([args] { runDbBuild(*args); });
+    setAction(build, [args] { runDbBuild(*args); });
 }
 
 const CommandRegistration kRegistration{"db", 10, addDbCommand};

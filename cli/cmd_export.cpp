@@ -8,6 +8,9 @@
 #include <vector>
 
 #include "command_registry.h"
+#include "outputs.h"
+#include "terrasynth/file_transaction.h"
+#include "terrasynth/limits.h"
 #include "terrasynth/gltf_export.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/terrain.h"
@@ -59,13 +62,34 @@ Result<Input> openInput(const ExportArgs& a) {
     return in;
 }
 
+// Every file the export will write, checked before any work. Mask names depend on the database's
+// type names, so the masks' folder is checked here and their names when they are staged.
+Status checkExportOutputs(const ExportArgs& a) {
+    std::vector<PlannedOutput> planned = {{"-o", a.output}};
+    if (isGltfPath(a.output)) {
+        if (hasSuffix(a.output, ".gltf")) planned.push_back({"-o (its .bin)", a.output.substr(0, a.output.size() - 5) + ".bin"});
+    } else {
+        if (Status s = checkHeightmapExportPath(a.output); !s) return s.withContext("-o");
+        if (!hasSuffix(a.output, ".exr") && !hasSuffix(a.output, ".tif") && !hasSuffix(a.output, ".tiff"))
+            planned.push_back({"-o (its sidecar)", sidecarOf(a.output)});
+    }
+    if (!a.masks.empty()) planned.push_back({"--masks", a.masks + "mask.png"});
+    return checkOutputs(planned);
+}
+
 Status runExport(const ExportArgs& a) {
     if (a.project.empty() == a.heightmap.empty()) return Status::error("give either a project or --heightmap");
+    if (Status s = checkExportOutputs(a); !s) return s;
     auto input = openInput(a);
     if (!input) return input.status();
     PixelWindow region = input->extent;
     if (!a.region.empty()) {
         if (a.region.size() != 4) return Status::error("--region: expected X,Y,W,H");
+        if (a.region[2] < 2 || a.region[3] < 2 || a.region[2] > limits::kMaxWindowSide || a.region[3] > limits::kMaxWindowSide)
+            return Status::error("--region: W and H must be 2.." + std::to_string(limits::kMaxWindowSide));
+        if (a.region[0] < -limits::kMaxWindowOrigin || a.region[0] > limits::kMaxWindowOrigin ||
+            a.region[1] < -limits::kMaxWindowOrigin || a.region[1] > limits::kMaxWindowOrigin)
+            return Status::error("--region: X and Y must be within +-2^29");
         region = {a.region[0], a.region[1], static_cast<int>(a.region[2]), static_cast<int>(a.region[3])};
     }
     if (a.level > 0 && a.region.empty()) {  // the extent shrinks with the level
@@ -73,22 +97,27 @@ Status runExport(const ExportArgs& a) {
         region.width = std::max(2, region.width >> a.level), region.height = std::max(2, region.height >> a.level);
     }
 
+    // Masks and the export change together: one transaction, committed at the end.
+    FileTransaction transaction;
+    std::vector<std::string> mask_paths;
     if (!a.masks.empty()) {
         if (!input->types) return Status::error("--masks needs a project (a coordinate map), not --heightmap");
         auto types = input->types(region, a.level);
         if (!types) return types.status();
         TypeMaskOptions mask_options;
         mask_options.blur_radius = a.mask_blur;
-        auto paths = writeTypeMasks(a.masks, region.width, region.height, *types, input->type_names, mask_options);
+        auto paths = stageTypeMasks(transaction, a.masks, region.width, region.height, *types, input->type_names, mask_options);
         if (!paths) return paths.status();
-        for (const std::string& p : *paths) std::printf("wrote %s\n", p.c_str());
+        mask_paths = std::move(*paths);
     }
 
     if (!isGltfPath(a.output)) {
         auto field = input->heights(region, a.level);
         if (!field) return field.status();
         const double origin_x = region.x * field->meters_per_pixel_x, origin_y = -region.y * field->meters_per_pixel_y;
-        if (Status s = exportHeightmap(a.output, *field, origin_x, origin_y); !s) return s;
+        if (Status s = stageHeightmapExport(transaction, a.output, *field, origin_x, origin_y); !s) return s;
+        if (Status s = transaction.commit(); !s) return s;
+        for (const std::string& p : mask_paths) std::printf("wrote %s\n", p.c_str());
         std::printf("wrote %s (%dx%d heights)\n", a.output.c_str(), field->width, field->height);
         return Status::ok();
     }
@@ -104,8 +133,10 @@ Status runExport(const ExportArgs& a) {
     options.vertex_colors = a.colors;
     options.texture_size = a.texture;
     if (a.colors || a.texture > 0) options.types = input->types;
-    auto stats = exportGltf(a.output, input->heights, options);
+    auto stats = stageGltf(transaction, a.output, input->heights, options);
     if (!stats) return stats.status();
+    if (Status s = transaction.commit(); !s) return s;
+    for (const std::string& p : mask_paths) std::printf("wrote %s\n", p.c_str());
     std::printf("wrote %s: %d x %d tiles, %d LODs, %zu bytes (JSON %zu, binary %zu)\n", a.output.c_str(), stats->tiles_x,
                 stats->tiles_y, a.lods, stats->file_bytes, stats->json_bytes, stats->binary_bytes);
     for (size_t k = 0; k < stats->lods.size(); ++k)
@@ -133,7 +164,7 @@ void addExportCommand(CLI::App& app) {
     cmd->add_option("--texture", a->texture, "Embed a tint texture of at most N pixels per side")->check(CLI::Range(0, 8192));
     cmd->add_option("--masks", a->masks, "Also write one PNG mask per terrain type: PREFIX<type>.png (projects only)");
     cmd->add_option("--mask-blur", a->mask_blur, "Blur radius (pixels) for soft splat masks")->check(CLI::Range(0, 64));
-    cmd->callback([a] {
+    setAction(cmd, [a] {
         if (Status s = runExport(*a); !s) fail(kCommand, s.message());
     });
 }

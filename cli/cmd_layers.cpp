@@ -9,6 +9,9 @@
 #include <vector>
 
 #include "command_registry.h"
+#include "outputs.h"
+#include "terrasynth/file_transaction.h"
+#include "terrasynth/limits.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/layers.h"
 
@@ -42,25 +45,48 @@ Result<Heightfield> gridFor(const LayersArgs& a, const LayerStack& stack) {
     return Heightfield(a.size[0], a.size[1], a.mpp);
 }
 
+// The grid options and every file to be written, checked before any work.
+Status checkArguments(const LayersArgs& a) {
+    if (!a.size.empty() && (a.size.size() != 2 || a.size[0] < 1 || a.size[1] < 1 || a.size[0] > limits::kMaxWindowSide ||
+                            a.size[1] > limits::kMaxWindowSide))
+        return Status::error("--size: W,H must be 1.." + std::to_string(limits::kMaxWindowSide) + " each");
+    if (a.mpp != 0.0 && !(a.mpp > 0.0 && a.mpp <= 1e5)) return Status::error("--mpp: must be in (0, 100000]");
+    std::vector<PlannedOutput> planned;
+    if (!a.output.empty()) {
+        if (Status s = checkHeightfieldPath(a.output); !s) return s.withContext("-o");
+        planned.push_back({"-o", a.output});
+        if (!hasSuffix(a.output, ".exr")) planned.push_back({"-o (its sidecar)", sidecarOf(a.output)});
+    }
+    if (!a.hillshade.empty()) {
+        if (!hasSuffix(a.hillshade, ".png")) return Status::error("--hillshade: " + a.hillshade + ": must end in .png");
+        planned.push_back({"--hillshade", a.hillshade});
+    }
+    return checkOutputs(planned);
+}
+
 void runLayers(const LayersArgs& a) {
+    if (Status s = checkArguments(a); !s) return fail(kCommand, s.message());
     auto stack = readLayerStack(a.project);
     if (!stack) return fail(kCommand, stack.message());
-    if (a.json) std::printf("%s\n", nlohmann::json::parse(layerStackToJson(*stack)).dump(2).c_str());
+    if (a.json) std::printf("%s\n", jsonText(nlohmann::json::parse(layerStackToJson(*stack)), 2).c_str());
     else std::printf("%s", describeLayerStack(*stack).c_str());
     if (a.output.empty() && a.hillshade.empty()) return;
     auto grid = gridFor(a, *stack);
     if (!grid) return fail(kCommand, grid.message());
     auto out = applyLayerStack(*stack, *grid);
     if (!out) return fail(kCommand, out.message());
+    // The heightmap and the hillshade change together or not at all.
+    FileTransaction transaction;
+    if (!a.hillshade.empty())
+        if (Status s = stageHillshadePng(transaction, a.hillshade, *out); !s) return fail(kCommand, s.message());
+    if (!a.output.empty())
+        if (Status s = stageHeightfield(transaction, a.output, *out); !s) return fail(kCommand, s.message());
+    if (Status s = transaction.commit(); !s) return fail(kCommand, s.message());
     if (!a.output.empty()) {
-        if (Status s = writeHeightfield(a.output, *out); !s) return fail(kCommand, s.message());
         const HeightRange r = heightRange(*out);
         std::printf("wrote %s: %dx%d, heights %.1f..%.1f m\n", a.output.c_str(), out->width, out->height, r.min, r.max);
     }
-    if (!a.hillshade.empty()) {
-        if (Status s = writeHillshadePng(a.hillshade, *out); !s) return fail(kCommand, s.message());
-        std::printf("wrote %s\n", a.hillshade.c_str());
-    }
+    if (!a.hillshade.empty()) std::printf("wrote %s\n", a.hillshade.c_str());
 }
 
 void addLayersCommand(CLI::App& app) {
@@ -73,7 +99,7 @@ void addLayersCommand(CLI::App& app) {
     cmd->add_option("--mpp", args->mpp, "Grid spacing in metres per pixel (with --size)");
     cmd->add_option("-o,--output", args->output, "Write the composed heightmap (.png, .f32, .exr)");
     cmd->add_option("--hillshade", args->hillshade, "Write a hillshade PNG of the composed terrain");
-    cmd->callback([args] { runLayers(*args); });
+    setAction(cmd, [args] { runLayers(*args); });
 }
 
 const CommandRegistration kReg{kCommand, 35, addLayersCommand};

@@ -147,7 +147,7 @@ void run(const StatsOptions& o) {
     if (!stats_a) return fail(kCommand, o.a + ": " + stats_a.message());
 
     if (o.b.empty()) {
-        if (o.json) std::printf("%s\n", toJson(o.a, *stats_a).dump(2).c_str());
+        if (o.json) std::printf("%s\n", jsonText(toJson(o.a, *stats_a), 2).c_str());
         else printSummary(o.a, *stats_a);
         return;
     }
@@ -183,7 +183,7 @@ void run(const StatsOptions& o) {
             report["reference_spread"] = {{"source", "quadrants of a"},   {"piece_size", spread->piece_size},
                                           {"pairs", spread->pairs},       {"median", toJson(spread->median)},
                                           {"max", toJson(spread->max)}};
-        std::printf("%s\n", report.dump(2).c_str());
+        std::printf("%s\n", jsonText(report, 2).c_str());
         return;
     }
     if (!note.empty()) std::printf("%s", note.c_str());
@@ -201,7 +201,7 @@ void addStatsCommand(CLI::App& app) {
     cmd->add_option("--vs", options->b,
                     "Second terrain: print per-metric distances (it is resampled to the first one's spacing)");
     cmd->add_flag("--json", options->json, "Print JSON instead of text");
-    cmd->callback([options] { run(*options); });
+    setAction(cmd, [options] { run(*options); });
 }
 
 const CommandRegistration kReg{"stats", 40, addStatsCommand};

@@ -11,7 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.h"
+#include "outputs.h"
 #include "terrasynth/curve_course.h"
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/terrain.h"
 
@@ -39,8 +41,9 @@ bool parsePair(const std::string& text, char separator, int64_t* a, int64_t* b) 
 }
 
 // Sources map (issue: "R,G = exemplar x,y; B = exemplar id") as a 16-bit RGB PNG, with a sidecar
-// naming the exemplars so materials can be transferred from them.
-Status writeSourcesMap(const std::string& path, const SynthesisOutput& out, const ExemplarDatabase& db, int level) {
+// naming the exemplars so materials can be transferred from them. Staged: the PNG, then its sidecar.
+Status stageSourcesMap(FileTransaction& transaction, const std::string& path, const SynthesisOutput& out,
+                       const ExemplarDatabase& db, int level) {
     const Heightfield& h = out.heights;
     std::vector<uint16_t> rgb(h.size() * 3);
     for (size_t i = 0; i < h.size(); ++i) {
@@ -56,10 +59,8 @@ Status writeSourcesMap(const std::string& path, const SynthesisOutput& out, cons
     for (size_t e = 0; e < db.exemplars.size(); ++e)
         side["exemplars"].push_back({{"index", e}, {"name", db.exemplars[e].name}, {"path", db.exemplars[e].path},
                                      {"type", db.type_names[db.exemplar_type[e]]}});
-    const std::string sidecar = path.substr(0, path.find_last_of('.')) + ".json";
-    Status s = writeFileAtomically(sidecar, side.dump(1) + "\n");
-    if (!s) return s;
-    return writePng16(path, h.width, h.height, 3, rgb);
+    if (Status s = stagePng16(transaction, path, h.width, h.height, 3, rgb); !s) return s;
+    return transaction.stage(sidecarOf(path), jsonText(side, 1) + "\n");
 }
 
 // How close each point constraint's site and each curve's course in the window came to their
@@ -115,10 +116,34 @@ Result<Project> projectWithOverrides(const std::string& project_path, const Synt
     return project;
 }
 
-Status writeOutputs(const SynthArgs& args, const Heightfield& heights) {
-    Status s = writeHeightfield(args.output, heights);
-    if (s && !args.preview.empty()) s = writeHillshadePng(args.preview, heights);
-    return s;
+// Everything `synth` will write, checked before any synthesis.
+Status checkSynthOutputs(const SynthArgs& args) {
+    if (Status s = checkHeightfieldPath(args.output); !s) return s;
+    std::vector<PlannedOutput> planned = {{"-o", args.output}};
+    if (!hasSuffix(args.output, ".exr")) planned.push_back({"-o (its sidecar)", sidecarOf(args.output)});
+    if (!args.preview.empty()) {
+        if (!hasSuffix(args.preview, ".png")) return Status::error("--preview: " + args.preview + ": must end in .png");
+        planned.push_back({"--preview", args.preview});
+    }
+    if (!args.sources.empty()) {
+        if (!hasSuffix(args.sources, ".png")) return Status::error("--sources: " + args.sources + ": must end in .png");
+        planned.push_back({"--sources", args.sources});
+        planned.push_back({"--sources (its sidecar)", sidecarOf(args.sources)});
+    }
+    return checkOutputs(planned);
+}
+
+// All outputs in one transaction: the preview and sources map first, the heightmap and its sidecar
+// last; on any failure every previous file stays as it was.
+Status writeOutputs(const SynthArgs& args, const Heightfield& heights, const SynthesisOutput* sources = nullptr,
+                    const ExemplarDatabase* db = nullptr) {
+    FileTransaction transaction;
+    if (!args.preview.empty())
+        if (Status s = stageHillshadePng(transaction, args.preview, heights); !s) return s;
+    if (sources)
+        if (Status s = stageSourcesMap(transaction, args.sources, *sources, *db, args.level); !s) return s;
+    if (Status s = stageHeightfield(transaction, args.output, heights); !s) return s;
+    return transaction.commit();
 }
 
 // --coherent-with: the project as an edit of another (s5.3), re-synthesizing only what changed.
@@ -150,8 +175,8 @@ void runCoherentEdit(const SynthArgs& args, const TerrainOptions& options, Terra
 }
 
 void runSynth(const SynthArgs& args) {
-    // Refuse an unwritable output format before spending time on synthesis.
-    if (Status s = checkHeightfieldPath(args.output); !s) return fail("synth", s.message());
+    // Refuse unwritable outputs before spending time on synthesis.
+    if (Status s = checkSynthOutputs(args); !s) return fail("synth", s.message());
     auto loaded = projectWithOverrides(args.project, args);
     if (!loaded) return fail("synth", loaded.message());
     const Project& project = loaded.value();
@@ -172,8 +197,8 @@ void runSynth(const SynthArgs& args) {
     auto out = terrain.value()->synthesize(window, args.level, !args.sources.empty());
     if (!out) return fail("synth", out.message());
     const auto done = std::chrono::steady_clock::now();
-    Status s = writeOutputs(args, out->heights);
-    if (s && !args.sources.empty()) s = writeSourcesMap(args.sources, out.value(), terrain.value()->database(), args.level);
+    Status s = writeOutputs(args, out->heights, args.sources.empty() ? nullptr : &out.value(),
+                            &terrain.value()->database());
     if (!s) return fail("synth", s.message());
     const HeightRange range = heightRange(out->heights);
     std::printf("wrote %s: %dx%d at %.2f m/pixel, heights %.1f..%.1f m, seed %u\n", args.output.c_str(),
@@ -200,7 +225,7 @@ void addSynthCommand(CLI::App& app) {
     cmd->add_option("--backend", args->backend, "opencl (default) or reference (plain C++)");
     cmd->add_option("--coherent-with", args->coherent_with,
                     "Previous version of the project (.tsyn): re-synthesize only where the constraints changed (s5.3)");
-    cmd->callback([args] { runSynth(*args); });
+    setAction(cmd, [args] { runSynth(*args); });
 }
 
 const CommandRegistration kRegistration{"synth", 20, addSynthCommand};

@@ -244,6 +244,16 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             }
         }
     }
+    if (best_q < 0) {
+        // Every candidate was rejected (a painted type without seed coordinates at this level) or
+        // costs too much to compare: the pixel keeps its own coordinate, C_1 of S(p).
+        const float4 s = state[pixel];
+        const int c = floor_nonneg(s.y + 0.5f) * width + floor_nonneg(s.x + 0.5f);
+        best_q = (int)similar[c].x;
+        float h = 0.0f;
+        candidate_cost(appearance, width, ns, best_q, weight, 1.0f, INFINITY, &h);
+        best_h = h;
+    }
     if (keep_v) {
         state[pixel] = (float4)((float)(best_q % width), (float)(best_q / width), prev_v[pixel], 0.0f);
         return;

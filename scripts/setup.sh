@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every build and test dependency from Debian bookworm's packages (run as root, or with
-# sudo available). Idempotent: does nothing when everything is already installed.
+# sudo available). Idempotent: does nothing when everything is already installed. slurm-wlm and
+# munge serve the sharded-bake test, which starts its own throwaway cluster (scripts/slurm-local.sh).
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
@@ -10,6 +11,10 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri
   python3-numpy
+  slurm-wlm munge
+  # Hardening (issue 20): libFuzzer (clang and its runtime, scripts/fuzz.sh), valgrind
+  # (scripts/valgrind_databases.sh), PIL for regenerating fuzz seeds (tests/fuzz/make_seeds.py).
+  clang libclang-rt-14-dev valgrind python3-pil
 )
 # The glTF validator runs on Node.js; machines that already have node/npm (e.g. from NodeSource)
 # keep theirs, since Debian's npm package conflicts with it.

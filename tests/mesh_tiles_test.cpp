@@ -309,3 +309,37 @@ TEST(MeshOrder, GridOrderIsCacheFriendly) {
         }
     }
 }
+
+// heightOnGridCell is the surface of the mesh's own triangles: any point inside a cell lies on the
+// triangle of the index buffer that contains it, at the height heightOnGridCell gives.
+TEST(MeshGrid, HeightOnGridCellIsTheMeshTrianglesSurface) {
+    const Heightfield field = test::crop(alaska(), 100, 200, 9, 9);
+    MeshOptions o;
+    o.optimize_order = false;
+    const TileMesh mesh = meshHeightfield(field, o);
+    const double s = field.meters_per_pixel_x;
+    int checked = 0;
+    for (double u = 0.05; u < 8.0; u += 0.37) {
+        for (double w = 0.03; w < 8.0; w += 0.41) {
+            const double x = u * s, y = -w * s;
+            // The triangle containing (x, y) in plan view, by barycentric coordinates.
+            for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+                const float* a = &mesh.positions[3 * mesh.indices[3 * t]];
+                const float* b = &mesh.positions[3 * mesh.indices[3 * t + 1]];
+                const float* c = &mesh.positions[3 * mesh.indices[3 * t + 2]];
+                const double det = double(b[0] - a[0]) * (c[1] - a[1]) - double(c[0] - a[0]) * (b[1] - a[1]);
+                const double l1 = ((x - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (y - a[1])) / det;
+                const double l2 = ((b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1])) / det;
+                if (l1 < -1e-9 || l2 < -1e-9 || l1 + l2 > 1.0 + 1e-9) continue;
+                const double on_mesh = a[2] + l1 * (b[2] - a[2]) + l2 * (c[2] - a[2]);
+                const int i = static_cast<int>(u), j = static_cast<int>(w);
+                const double expected = heightOnGridCell(field.at(i, j), field.at(i + 1, j), field.at(i, j + 1),
+                                                         field.at(i + 1, j + 1), u - i, w - j);
+                EXPECT_NEAR(expected, on_mesh, 1e-3) << "at " << u << "," << w;
+                ++checked;
+                break;
+            }
+        }
+    }
+    EXPECT_GT(checked, 300);
+}

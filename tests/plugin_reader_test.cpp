@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include <osg/Geometry>
 #include <osgDB/ReadFile>
 #include <osgDB/Registry>
 
@@ -61,7 +62,15 @@ TEST(PluginReader, BadOptionValuesAreReportedByName) {
     EXPECT_FLOAT_EQ(parsed->node.pixel_error, 2.5f);
     ASSERT_TRUE(parsed->seed.has_value());
     EXPECT_EQ(*parsed->seed, 7u);
-    for (const char* bad : {"tileSize=abc", "seed=-1", "maxLevel=2 minLevel=3", "backend=cuda", "cacheMB=0"}) {
+    auto look = parsePluginOptions("sunAzimuth=200 sunElevation=30 snowLine=2500 fog=50000 typeColors=1");
+    ASSERT_TRUE(look) << look.message();
+    EXPECT_FLOAT_EQ(*look->sun_azimuth_deg, 200.0f);
+    EXPECT_FLOAT_EQ(*look->sun_elevation_deg, 30.0f);
+    EXPECT_FLOAT_EQ(*look->snow_line_m, 2500.0f);
+    EXPECT_FLOAT_EQ(*look->fog_m, 50000.0f);
+    EXPECT_TRUE(look->type_colors);
+    for (const char* bad : {"tileSize=abc", "seed=-1", "maxLevel=2 minLevel=3", "backend=cuda", "cacheMB=0",
+                            "sunElevation=100", "fog=-1", "typeColors=2"}) {
         auto p = parsePluginOptions(bad);
         EXPECT_FALSE(p) << bad;
     }
@@ -83,6 +92,34 @@ TEST(PluginReader, ReadsAProjectAndOsgconvWritesIt) {
     ASSERT_NE(terrain, nullptr);
     EXPECT_GT(terrain->getNumChildren(), 0u) << "the project extent is preloaded";
     EXPECT_TRUE(terrain->getBound().valid());
+    // The look follows the extent's heights; fog hides the draw radius's edge.
+    const auto range = terrain->heightRange({0, 0, 256, 256});
+    ASSERT_TRUE(range.has_value());
+    const TerrainLook look = terrain->look();
+    EXPECT_GT(look.snow_line_m, range->first);
+    EXPECT_LT(look.snow_line_m, range->second);
+    EXPECT_FLOAT_EQ(look.fog_visibility_m, static_cast<float>(0.9 * terrain->options().view_radius_m));
+    EXPECT_EQ(look.type_colour_mix, 0.0f);
+    // The home view looks at the extent from the south, from above its peaks.
+    const osg::BoundingSphere home = terrain->getBound();
+    EXPECT_GT(home.center().z(), range->second);
+    EXPECT_NEAR(home.center().x(), 128 * terrain->layout().meters_per_pixel, 1.0);
+
+    // Type colours: preloaded tiles carry a type id per vertex.
+    osg::ref_ptr<osgDB::Options> typed = new osgDB::Options("tileSize=64 maxLevel=3 threads=2 typeColors=1");
+    auto t = rw->readNode(dir + "/world.tsyn", typed.get());
+    ASSERT_TRUE(t.success()) << t.message();
+    auto* typed_terrain = dynamic_cast<TerrainNode*>(t.getNode());
+    ASSERT_NE(typed_terrain, nullptr);
+    EXPECT_GT(typed_terrain->look().type_colour_mix, 0.0f);
+    ASSERT_GT(typed_terrain->getNumChildren(), 0u);
+    const auto* tile = dynamic_cast<const osg::Group*>(typed_terrain->getChild(0));
+    ASSERT_NE(tile, nullptr);
+    const osg::Geometry* geometry = tile->getChild(0)->asGeometry();
+    ASSERT_NE(geometry, nullptr);
+    const auto* types = dynamic_cast<const osg::FloatArray*>(geometry->getVertexAttribArray(kTypeAttribute));
+    ASSERT_NE(types, nullptr) << "no type attribute";
+    for (float id : *types) EXPECT_EQ(id, 0.0f) << "one exemplar, one type: its default type";
     // What osgconv asks for first.
     EXPECT_TRUE(rw->readObject(dir + "/world.tsyn", opts.get()).success());
 

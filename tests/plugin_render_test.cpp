@@ -5,20 +5,17 @@
 // When DISPLAY is unset the test re-runs itself under xvfb-run; it skips only if xvfb-run is missing.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <thread>
 
-#include <osg/Camera>
-#include <osg/GraphicsContext>
-#include <osg/Image>
 #include <osgDB/WriteFile>
 #include <osgViewer/Viewer>
 
+#include "render_support.h"
+#include "terrasynth_plugin/hole_check.h"
 #include "terrasynth_plugin/terrain_node.h"
 #include "test_support.h"
 
@@ -28,49 +25,6 @@ namespace {
 constexpr int kWidth = 480, kHeight = 270;
 constexpr double kPitchDeg = 12.0;  // below the horizon: the sky (clear colour) stays in view
 const osg::Vec4 kClear(1.0f, 0.0f, 1.0f, 1.0f);  // magenta: no terrain colour is ever this
-
-bool haveProgram(const char* name) {
-    return std::system((std::string("command -v ") + name + " >/dev/null 2>&1").c_str()) == 0;
-}
-
-struct Capture : osg::Camera::DrawCallback {
-    osg::ref_ptr<osg::Image> image = new osg::Image;
-    void operator()(osg::RenderInfo&) const override {
-        image->readPixels(0, 0, kWidth, kHeight, GL_RGB, GL_UNSIGNED_BYTE);
-    }
-};
-
-// Pixels that must show terrain: their ray descends and reaches `ground_z` (at or below every drawn
-// sample, so the terrain is hit first) within `radius` metres horizontally of the eye.
-int countHoles(const osg::Image& img, const osg::Camera& cam, double ground_z, double radius, int* required,
-               int* sky) {
-    const osg::Matrixd vpw = cam.getViewMatrix() * cam.getProjectionMatrix() *
-                             cam.getViewport()->computeWindowMatrix();
-    const osg::Matrixd inv = osg::Matrixd::inverse(vpw);
-    osg::Vec3d eye, center, up;
-    cam.getViewMatrixAsLookAt(eye, center, up);
-    int holes = 0;
-    *required = 0;
-    *sky = 0;
-    for (int y = 0; y < kHeight; ++y) {
-        for (int x = 0; x < kWidth; ++x) {
-            const osg::Vec3d a = osg::Vec3d(x + 0.5, y + 0.5, 0.0) * inv, b = osg::Vec3d(x + 0.5, y + 0.5, 1.0) * inv;
-            const osg::Vec3d dir = b - a;
-            const unsigned char* p = img.data(x, y);
-            const bool clear = p[0] > 240 && p[1] < 15 && p[2] > 240;
-            if (dir.z() >= -1e-9) {
-                *sky += clear;
-                continue;
-            }
-            const double t = (ground_z - eye.z()) / dir.z();
-            const osg::Vec3d hit = eye + dir * t;
-            if (std::hypot(hit.x() - eye.x(), hit.y() - eye.y()) > radius) continue;
-            ++*required;
-            holes += clear;
-        }
-    }
-    return holes;
-}
 
 void runFlight() {
     const Heightfield dem = test::loadExemplarField("orom_alaska");
@@ -83,28 +37,12 @@ void runFlight() {
     o.merge_budget_ms = 4.0;
     osg::ref_ptr<TerrainNode> terrain = new TerrainNode(source, dem.meters_per_pixel_x, o);
 
-    osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
-    traits->readDISPLAY();
-    traits->setUndefinedScreenDetailsToDefaultScreen();
-    traits->width = kWidth;
-    traits->height = kHeight;
-    traits->windowDecoration = false;
-    traits->doubleBuffer = true;
-    osg::ref_ptr<osg::GraphicsContext> gc = osg::GraphicsContext::createGraphicsContext(traits.get());
-    ASSERT_TRUE(gc.valid()) << "no graphics context (DISPLAY=" << (std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "")
-                            << ")";
     osgViewer::Viewer viewer;
-    viewer.setThreadingModel(osgViewer::Viewer::SingleThreaded);
+    osg::ref_ptr<test::Capture> capture = new test::Capture(kWidth, kHeight);
+    const std::string no_window = test::setUpWindowViewer(viewer, kWidth, kHeight, kClear, 40.0, capture.get());
+    ASSERT_EQ(no_window, "");
     osg::Camera* cam = viewer.getCamera();
-    cam->setGraphicsContext(gc.get());
-    cam->setViewport(0, 0, kWidth, kHeight);
-    cam->setProjectionMatrixAsPerspective(40.0, double(kWidth) / kHeight, 1.0, 1e6);
-    cam->setClearColor(kClear);
-    osg::ref_ptr<Capture> capture = new Capture;
-    cam->setFinalDrawCallback(capture.get());
     viewer.setSceneData(terrain.get());
-    viewer.realize();
-    ASSERT_TRUE(viewer.isRealized());
 
     const std::string shots = test::scratchDir("plugin_render");
     // Terrain-following flight, 10 km east-south-east at 700 m above the ground below, looking
@@ -135,9 +73,9 @@ void runFlight() {
         }
         const TerrainStats st = terrain->stats();
         ASSERT_GT(st.drawn_tiles, 0u);
-        int required = 0, sky = 0;
-        const int holes = countHoles(*capture->image, *cam, st.drawn_min_height - 1.0,
-                                     0.9 * terrain->options().view_radius_m, &required, &sky);
+        const HoleCount count = countHoles(*capture->image, *cam, st.drawn_min_height - 1.0,
+                                           0.9 * terrain->options().view_radius_m, kClear);
+        const int holes = count.holes, required = count.required, sky = count.sky_clear;
         sky_total += sky;
         required_total += required;
         ++checked;
@@ -156,18 +94,7 @@ void runFlight() {
 }
 
 TEST(PluginRender, FlightShowsNoHolesOrCracks) {
-    const char* display = std::getenv("DISPLAY");
-    if (!display || !*display) {
-        if (std::getenv("TERRASYNTH_RENDER_CHILD")) FAIL() << "xvfb-run gave no DISPLAY";
-        if (!haveProgram("xvfb-run")) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
-        char self[4096] = {};
-        ASSERT_GT(readlink("/proc/self/exe", self, sizeof self - 1), 0);
-        const std::string cmd = std::string("TERRASYNTH_RENDER_CHILD=1 xvfb-run -a -s \"-screen 0 1280x720x24\" '") +
-                                self + "' --gtest_filter=PluginRender.FlightShowsNoHolesOrCracks";
-        const int rc = std::system(cmd.c_str());
-        ASSERT_EQ(rc, 0) << "the flight under xvfb-run failed (its output is above)";
-        return;
-    }
+    TERRASYNTH_NEED_DISPLAY("PluginRender.FlightShowsNoHolesOrCracks");
     runFlight();
 }
 

@@ -128,7 +128,9 @@ TEST(Constraints, PointHeightsHoldOnProjectsNeverSeenBefore) {
         // From 10 degrees up the slope holds over the site's own 7x7 pixels too.
         const double own = planeDirectionDeg(shaped.heights, c.x, c.y, 3);
         std::printf("seed %u: slope over the site's 7x7 pixels %.1f deg (asked %.0f at %.0f deg)\n", c.seed, own, c.direction, c.angle);
-        if (c.angle >= 10.0f) EXPECT_LT(angleBetweenDeg(own, c.direction), 15.0) << "seed " << c.seed;
+        if (c.angle >= 10.0f) {
+            EXPECT_LT(angleBetweenDeg(own, c.direction), 15.0) << "seed " << c.seed;
+        }
     }
 }
 

@@ -206,6 +206,15 @@ TEST(EditSession, FortyRandomEditsUndoRedoSaveReopen) {
     EXPECT_TRUE(reopened.value()->usesEditedHeights());
     EXPECT_TRUE(reopened.value()->warnings().empty());
     EXPECT_TRUE(sameBits(extentOf(**reopened).heights, after.back()));
+    // ... and so is the world around the extent and every coarser level: the same height source.
+    const HeightSource source = session->heightSource();
+    for (int level = 0; level <= 3; ++level) {
+        const PixelWindow around{(kOriginX >> level) - 40, (kOriginY >> level) - 30, (kSize >> level) + 80, 50};
+        auto a = source(around, level);
+        auto b = reopened.value()->heights(around, level);
+        ASSERT_TRUE(a && b);
+        EXPECT_TRUE(sameBits(a->heights, b->heights)) << "level " << level;
+    }
     auto again = openSession(saved);
     ASSERT_TRUE(again);
     EXPECT_TRUE(sameBits(again->heights().heights, after.back()));

@@ -315,7 +315,7 @@ TEST(SynthCurves, JunctionsAgreeOnHeight) {
                                            straight(200, 100, 200, 300, {widget(0, 300, 0, 0, 12, 12)})};
     std::vector<CourseSamples> courses;
     for (const CurveConstraint& c : curves) courses.push_back(sampleCourse(c.course, c.spline));
-    const std::vector<CourseCrossing> crossings = findCrossings({&courses[0], &courses[1]});
+    const std::vector<CourseCrossing> crossings = findCrossings({&courses[0], &courses[1]}).crossings;
     ASSERT_EQ(crossings.size(), 1u);
     EXPECT_NEAR(crossings[0].x, 200, 1e-6);
     EXPECT_NEAR(crossings[0].y, 200, 1e-6);
@@ -348,7 +348,7 @@ TEST(SynthCurves, SelfIntersectionIsAJunction) {
     loop.course = {{0, 100}, {200, 100}, {200, 0}, {100, 0}, {100, 200}};
     loop.widgets = {widget(0, 0, 0, 0, 10, 10), widget(1, 800, 0, 0, 10, 10)};
     const CourseSamples course = sampleCourse(loop.course, loop.spline);
-    const std::vector<CourseCrossing> crossings = findCrossings({&course});
+    const std::vector<CourseCrossing> crossings = findCrossings({&course}).crossings;
     ASSERT_EQ(crossings.size(), 1u);
     EXPECT_EQ(crossings[0].a, 0u);
     EXPECT_EQ(crossings[0].b, 0u);

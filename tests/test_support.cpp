@@ -5,7 +5,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <cstdlib>
 
@@ -28,9 +32,11 @@ std::string dataDir() { return env("TERRASYNTH_DATA_DIR", TERRASYNTH_TEST_DATA_D
 std::string sharedExemplarsDir() { return env("TERRASYNTH_SHARED_EXEMPLARS", TERRASYNTH_TEST_SHARED_EXEMPLARS); }
 std::string binDir() { return env("TERRASYNTH_BIN_DIR", TERRASYNTH_TEST_BIN_DIR); }
 
-CliRun runTerrasynth(const std::string& args) {
+CliRun runTerrasynth(const std::string& args) { return runCommand(binDir() + "/terrasynth " + args); }
+
+CliRun runCommand(const std::string& command_line) {
     CliRun r;
-    FILE* pipe = ::popen((binDir() + "/terrasynth " + args + " 2>&1").c_str(), "r");
+    FILE* pipe = ::popen((command_line + " 2>&1").c_str(), "r");
     if (!pipe) return r;
     char buffer[4096];
     size_t n;
@@ -59,11 +65,54 @@ Heightfield loadExemplarField(const std::string& stem) {
     return exemplar->field;
 }
 
+bool haveProgram(const std::string& name) {
+    return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+std::string xvfbPrefix() {
+    const char* display = std::getenv("DISPLAY");
+    if (display && *display) return "";
+    return "xvfb-run -a -s '-screen 0 1280x720x24' ";
+}
+
+int rerunUnderXvfbUnlessDisplay(const std::string& gtest_filter) {
+    const char* display = std::getenv("DISPLAY");
+    if (display && *display) return kHaveDisplay;
+    if (std::getenv("TERRASYNTH_RENDER_CHILD")) {
+        ADD_FAILURE() << "xvfb-run gave no DISPLAY";
+        return 1;
+    }
+    if (!haveProgram("xvfb-run")) return kNoXvfb;
+    char self[4096] = {};
+    if (::readlink("/proc/self/exe", self, sizeof self - 1) <= 0) return 1;
+    const std::string cmd = "TERRASYNTH_RENDER_CHILD=1 " + xvfbPrefix() + "'" + self +
+                            "' --gtest_filter='" + gtest_filter + "'";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
 Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h) {
     Heightfield out(w, h, field.meters_per_pixel_x);
     out.meters_per_pixel_y = field.meters_per_pixel_y;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) out.at(x, y) = field.at(x0 + x, y0 + y);
+    return out;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::vector<std::string> filesUnder(const std::string& dir) {
+    std::vector<std::string> out;
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) return out;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir, ec))
+        if (e.is_regular_file()) out.push_back(std::filesystem::relative(e.path(), dir).string());
+    std::sort(out.begin(), out.end());
     return out;
 }
 

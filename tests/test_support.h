@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "terrasynth/heightfield.h"
 
@@ -16,6 +17,8 @@ struct CliRun {
     std::string out;
 };
 CliRun runTerrasynth(const std::string& args);
+// Runs a shell command line; stdout and stderr together.
+CliRun runCommand(const std::string& command_line);
 bool terrasynthBuilt();
 // A fresh, empty scratch directory for one test: <build>/test_tmp/<name>.
 std::string scratchDir(const std::string& name);
@@ -23,6 +26,32 @@ std::string scratchDir(const std::string& name);
 Heightfield loadExemplarField(const std::string& stem);
 // Crop of a field (x0,y0,w,h), same spacing.
 Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h);
+// The bytes of a file ("" when it cannot be read).
+std::string readFile(const std::string& path);
+// Every regular file under `dir`, as sorted paths relative to it (empty when dir is absent).
+std::vector<std::string> filesUnder(const std::string& dir);
+
+// Tests that open windows (Mesa llvmpipe under Xvfb). With DISPLAY set this returns kHaveDisplay:
+// run the test body here. Otherwise the running test binary re-runs itself, filtered to
+// `gtest_filter`, under `xvfb-run -a` (screen 1280x720x24) and the child's exit code is returned
+// (its output goes to ours); kNoXvfb when xvfb-run is missing. A child without a display fails.
+constexpr int kHaveDisplay = -1000, kNoXvfb = -1001;
+int rerunUnderXvfbUnlessDisplay(const std::string& gtest_filter);
+// At the top of a TEST that needs a window: with a display, go on; otherwise run this test again
+// under xvfb-run, check its exit code and return (skip when xvfb-run is missing).
+#define TERRASYNTH_NEED_DISPLAY(gtest_filter)                                                   \
+    do {                                                                                        \
+        const int display_rc = ::terrasynth::test::rerunUnderXvfbUnlessDisplay(gtest_filter);   \
+        if (display_rc == ::terrasynth::test::kNoXvfb) GTEST_SKIP() << "no DISPLAY and no xvfb-run"; \
+        if (display_rc != ::terrasynth::test::kHaveDisplay) {                                    \
+            ASSERT_EQ(display_rc, 0) << "the test under xvfb-run failed (its output is above)"; \
+            return;                                                                             \
+        }                                                                                       \
+    } while (0)
+// "xvfb-run -a -s '-screen 0 1280x720x24' " to prefix a command that opens a window, or "" when
+// DISPLAY is already set.
+std::string xvfbPrefix();
+bool haveProgram(const std::string& name);
 
 }  // namespace terrasynth::test
 

@@ -11,6 +11,8 @@
 #include <osgDB/FileUtils>
 #include <osgDB/Registry>
 
+#include "terrasynth/gltf_export.h"
+#include "terrasynth/guard.h"
 #include "terrasynth/project.h"
 #include "terrasynth/terrain.h"
 #include "terrasynth_plugin/plugin_options.h"
@@ -30,6 +32,33 @@ int automaticPreloadLevel(const Project& p, const TerrainNodeOptions& o) {
         if (nx * ny <= 16) return level;
     }
     return o.max_level;
+}
+
+// The terrain type of every sample: the default type of the exemplar its synthesized pixel came from.
+TypeSource terrainTypeSource(std::shared_ptr<Terrain> terrain) {
+    return [terrain](const PixelWindow& w, int level) -> Result<std::vector<uint8_t>> {
+        auto out = terrain->synthesize(w, level, /*want_sources=*/true);
+        if (!out) return out.status();
+        return typesFromSources(out->source_exemplar, terrain->database().exemplar_type);
+    };
+}
+
+// Tints spread over the preloaded extent's heights, fog just inside the draw radius, then the options.
+TerrainLook lookFor(const TerrainNode& node, const PixelWindow& extent, const PluginOptions& o) {
+    const auto range = node.heightRange(extent);
+    TerrainLook look = range ? lookForHeightRange(range->first, range->second) : TerrainLook{};
+    look.fog_visibility_m = static_cast<float>(0.9 * node.options().view_radius_m);
+    if (o.sun_azimuth_deg) look.sun_azimuth_deg = *o.sun_azimuth_deg;
+    if (o.sun_elevation_deg) look.sun_elevation_deg = *o.sun_elevation_deg;
+    if (o.fog_m) look.fog_visibility_m = *o.fog_m;
+    if (o.snow_line_m) {
+        const float shift = *o.snow_line_m - look.snow_line_m;
+        look.snow_line_m += shift;
+        look.alpine_m = std::min(look.alpine_m, look.snow_line_m);
+        look.lowland_top_m = std::min(look.lowland_top_m, look.alpine_m);
+    }
+    if (o.type_colors) look.type_colour_mix = 0.45f;
+    return look;
 }
 
 class ReaderWriterTerrasynth : public osgDB::ReaderWriter {
@@ -53,6 +82,11 @@ public:
         supportsOption("device=<name>", "OpenCL device substring");
         supportsOption("preload=<0|1>", "build the project extent before returning (default 1)");
         supportsOption("preloadLevel=<n>", "level of the preload (default automatic)");
+        supportsOption("sunAzimuth=<deg>", "fixed sun azimuth, clockwise from north (default 315)");
+        supportsOption("sunElevation=<deg>", "fixed sun elevation (default 40)");
+        supportsOption("snowLine=<m>", "snow above this height (default from the project's heights)");
+        supportsOption("fog=<m>", "distance of 95% fog (default 0.9 x draw radius, 0 = none)");
+        supportsOption("typeColors=<0|1>", "colour painted terrain types (default 0)");
     }
 
     const char* className() const override { return "terrasynth .tsyn terrain reader"; }
@@ -63,13 +97,9 @@ public:
     }
 
     ReadResult readNode(const std::string& file, const Options* options) const override {
-        try {
-            return read(file, options);
-        } catch (const std::exception& e) {
-            return ReadResult(std::string("terrasynth: ") + file + ": " + e.what());
-        } catch (...) {
-            return ReadResult(std::string("terrasynth: ") + file + ": unknown error");
-        }
+        // osgDB calls in from any thread: nothing may escape (terrasynth/guard.h).
+        return invokeGuarded([&] { return read(file, options); },
+                             [&](const std::string& why) { return ReadResult("terrasynth: " + file + ": " + why); });
     }
 
 private:
@@ -98,6 +128,7 @@ private:
         HeightSource source = [shared](const PixelWindow& w, int level) { return shared->heights(w, level); };
         osg::ref_ptr<TerrainNode> node = new TerrainNode(source, shared->metersPerPixel(0), opts.node);
         node->setName(osgDB::getSimpleFileName(path));
+        if (opts.type_colors) node->setTypeSource(terrainTypeSource(shared));
         if (opts.preload) {
             const int level = opts.preload_level >= 0 ? opts.preload_level
                                                       : automaticPreloadLevel(shared->project(), opts.node);
@@ -106,7 +137,9 @@ private:
                 if (Status s = node->preload(shared->extent(), l); !s) return ReadResult(path + ": " + s.message());
                 if (l == level) break;
             }
+            node->setHomeExtent(shared->extent());
         }
+        node->setLook(lookFor(*node, shared->extent(), opts));
         return node.get();
     }
 };

@@ -39,10 +39,7 @@ std::vector<float> parentSurfaceHeights(const TileMesh& mesh, const Heightfield&
 }
 
 Heightfield parentSamplesFromNode(const osg::Node& parent_node, const TileKey& child, const TileBuildSettings& s) {
-    const auto* transform = dynamic_cast<const osg::MatrixTransform*>(&parent_node);
-    if (!transform || transform->getNumChildren() != 1) return {};
-    const osg::Geometry* geometry = transform->getChild(0)->asGeometry();
-    const auto* vertices = geometry ? dynamic_cast<const osg::Vec3Array*>(geometry->getVertexArray()) : nullptr;
+    const osg::Vec3Array* vertices = tileVertices(parent_node);
     if (!vertices) return {};
     const int half = s.layout.tile_size / 2;
     const double spacing = s.layout.spacing(child.level + 1);

@@ -99,6 +99,21 @@ Result<PluginOptions> parsePluginOptions(const std::string& option_string) {
         } else if (key == "preload") {
             if (!parseInt(value, 0, 1, i)) return bad("0 or 1");
             o.preload = i != 0;
+        } else if (key == "sunazimuth") {
+            if (!parseDouble(value, d)) return bad("degrees");
+            o.sun_azimuth_deg = static_cast<float>(d);
+        } else if (key == "sunelevation") {
+            if (!parseDouble(value, d) || d < 0.0 || d > 90.0) return bad("degrees in [0, 90]");
+            o.sun_elevation_deg = static_cast<float>(d);
+        } else if (key == "snowline") {
+            if (!parseDouble(value, d)) return bad("metres");
+            o.snow_line_m = static_cast<float>(d);
+        } else if (key == "fog") {
+            if (!parseDouble(value, d) || d < 0.0) return bad("metres >= 0");
+            o.fog_m = static_cast<float>(d);
+        } else if (key == "typecolors") {
+            if (!parseInt(value, 0, 1, i)) return bad("0 or 1");
+            o.type_colors = i != 0;
         } else if (key == "preloadlevel") {
             if (!parseInt(value, 0, 20, i)) return bad("an integer in [0, 20]");
             o.preload_level = static_cast<int>(i);

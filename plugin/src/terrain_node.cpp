@@ -7,7 +7,6 @@
 #include <string>
 #include <thread>
 
-#include <osg/Material>
 #include <osgUtil/CullVisitor>
 
 namespace terrasynth::plugin {
@@ -53,11 +52,9 @@ TerrainNode::TerrainNode(HeightSource source, double meters_per_pixel, const Ter
     // We need UPDATE traversals without an update callback (which users may want for themselves).
     setNumChildrenRequiringUpdateTraversal(getNumChildrenRequiringUpdateTraversal() + 1);
 
-    osg::ref_ptr<osg::Material> material = new osg::Material;
-    material->setDiffuse(osg::Material::FRONT_AND_BACK, osg::Vec4(0.62f, 0.58f, 0.50f, 1.0f));
-    material->setAmbient(osg::Material::FRONT_AND_BACK, osg::Vec4(0.30f, 0.29f, 0.27f, 1.0f));
-    getOrCreateStateSet()->setAttributeAndModes(material.get());
-    if (options.geomorph) installGeomorphProgram(*getOrCreateStateSet());
+    // The look and the geomorphing are one program (terrain_shader.cpp); without geomorphing the
+    // cull never sets ts_lod_k and nothing morphs.
+    installTerrainProgram(*getOrCreateStateSet());
 }
 
 TerrainNode::~TerrainNode() { pool_.reset(); }
@@ -88,11 +85,82 @@ void TerrainNode::traverse(osg::NodeVisitor& nv) {
 }
 
 osg::BoundingSphere TerrainNode::computeBound() const {
+    {
+        std::lock_guard<std::mutex> lock(home_mutex_);
+        if (home_bound_.valid()) return home_bound_;
+    }
     osg::BoundingSphere bs = osg::Group::computeBound();
     if (bs.valid()) bs.expandBy(bs.center() + osg::Vec3(0.0f, 0.0f, 2.0f * bs.radius()));
     return bs;
 }
 
+void TerrainNode::setHomeExtent(const PixelWindow& extent) {
+    TERRASYNTH_REQUIRE(!extent.empty(), "the home extent must not be empty");
+    const auto range = heightRange(extent);
+    const float low = range ? range->first : 0.0f, high = range ? range->second : 0.0f;
+    const GridFrame frame = layout_.frame();
+    const double width_m = extent.width * frame.spacing(0), height_m = extent.height * frame.spacing(0);
+    const double size = std::max(width_m, height_m);
+    const double cx = frame.worldX(extent.x + 0.5 * extent.width), cy = frame.worldY(extent.y + 0.5 * extent.height);
+    // Manipulators put the eye at radius / sin(their camera's half fov) south of the centre, at its
+    // height, looking north. The radius is chosen for stock osgviewer's half fov (14.6 degrees): the
+    // eye lands 1.3 extents south of the extent's near edge (whose corners are then 21 degrees off
+    // the axis, inside a 16:9 view), with the centre over the extent's middle; the height puts the
+    // near edge 11 degrees below the horizontal (the far edge about 6), and above every peak. Wider
+    // fields of view bring the eye closer and still show it all.
+    const double viewer_half_fov = osg::DegreesToRadians(14.6), near_edge_down = osg::DegreesToRadians(11.0);
+    const double near_distance = 1.3 * size;
+    const double eye_distance = near_distance + 0.5 * height_m;
+    const double eye_height = std::max(0.5 * (low + high) + near_distance * std::tan(near_edge_down),
+                                       double(high) + 0.05 * size);
+    std::lock_guard<std::mutex> lock(home_mutex_);
+    home_bound_ = osg::BoundingSphere(osg::Vec3(static_cast<float>(cx), static_cast<float>(cy), static_cast<float>(eye_height)),
+                                      static_cast<float>(eye_distance * std::sin(viewer_half_fov)));
+    dirtyBound();
+}
+
+void TerrainNode::setLook(const TerrainLook& look) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    look_ = look;
+    applyLook(*getOrCreateStateSet(), look);
+}
+
+TerrainLook TerrainNode::look() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return look_;
+}
+
+void TerrainNode::setTypeSource(TypeSource types) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    type_source_ = std::move(types);
+}
+
+std::vector<TileKey> TerrainNode::tilesCovering(const PixelWindow& region, int level) const {
+    const int64_t span = static_cast<int64_t>(layout_.tile_size) << level;
+    auto floorDiv = [](int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
+    std::vector<TileKey> keys;
+    if (region.empty()) return keys;
+    for (int64_t ty = floorDiv(region.y, span); ty <= floorDiv(region.y + region.height - 1, span); ++ty)
+        for (int64_t tx = floorDiv(region.x, span); tx <= floorDiv(region.x + region.width - 1, span); ++tx)
+            keys.push_back({level, tx, ty});
+    return keys;
+}
+
+std::optional<std::pair<float, float>> TerrainNode::heightRange(const PixelWindow& region) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (int level = options_.min_level; level <= options_.max_level; ++level) {
+        std::optional<std::pair<float, float>> range;
+        for (const TileKey& key : tilesCovering(region, level)) {
+            auto it = tiles_.find(key);
+            if (it == tiles_.end()) continue;
+            if (!range) range = std::make_pair(it->second.min_height, it->second.max_height);
+            range->first = std::min(range->first, it->second.min_height);
+            range->second = std::max(range->second, it->second.max_height);
+        }
+        if (range) return range;
+    }
+    return std::nullopt;
+}
 bool TerrainNode::touches(const TileKey& key, const PixelWindow& r) const {
     const PixelWindow w = tileReadWindow(key, build_settings_);
     // Level-k sample X reads level-0 pixels [X*2^k, (X+1)*2^k).
@@ -144,25 +212,22 @@ void TerrainNode::setHeightSource(HeightSource source) {
 
 Status TerrainNode::preload(const PixelWindow& region, int level) {
     TERRASYNTH_REQUIRE(level >= 0, "preload level must be >= 0");
-    const int64_t span = static_cast<int64_t>(layout_.tile_size) << level;
-    auto floorDiv = [](int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
-    std::vector<TileKey> keys;
-    for (int64_t ty = floorDiv(region.y, span); ty <= floorDiv(region.y + region.height - 1, span); ++ty)
-        for (int64_t tx = floorDiv(region.x, span); tx <= floorDiv(region.x + region.width - 1, span); ++tx)
-            keys.push_back({level, tx, ty});
+    const std::vector<TileKey> keys = tilesCovering(region, level);
 
     HeightSource source;
+    TypeSource types;
     uint64_t generation;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         source = source_;
+        types = type_source_;
         generation = generation_;
     }
     // Own short-lived threads: the pool's queue belongs to the frame loop.
     std::vector<TileBuild> builds(keys.size());
     std::atomic<size_t> next{0};
     auto work = [&] {
-        for (size_t i = next++; i < keys.size(); i = next++) builds[i] = buildTile(source, keys[i], build_settings_);
+        for (size_t i = next++; i < keys.size(); i = next++) builds[i] = buildTile(source, keys[i], build_settings_, nullptr, &types);
     };
     std::vector<std::thread> threads;
     for (int t = 0; t < pool_->threadCount(); ++t) threads.emplace_back(work);
@@ -190,6 +255,8 @@ TerrainStats TerrainNode::stats() const {
     s.waiting_merge = completed_.size();
     s.wanted_tiles = wanted_.size();
     s.drawn_tiles = drawn_.size();
+    s.prefetch_requests = 0;
+    for (const auto& [key, frame] : prefetch_) s.prefetch_requests += tiles_.count(key) == 0;
     const double n = static_cast<double>(std::max<uint64_t>(1, stats_.tiles_built));
     s.mean_build_ms = build_ms_sum_ / n;
     s.mean_heights_ms = heights_ms_sum_ / n;

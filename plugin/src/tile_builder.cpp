@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <string>
+
+#include "terrasynth/guard.h"
 
 namespace terrasynth::plugin {
 namespace {
@@ -29,6 +32,18 @@ HeightRange innerRange(const Heightfield& f, int border) {
     return r;
 }
 
+// Type id per vertex from the tile window's types (width x width samples, row-major): the sample
+// under the vertex; skirt vertices hang below a border sample and take its type.
+std::vector<float> vertexTypes(const TileMesh& mesh, const std::vector<uint8_t>& types, int width, double spacing) {
+    std::vector<float> out(mesh.vertexCount());
+    for (size_t v = 0; v < out.size(); ++v) {
+        const int64_t col = std::clamp<int64_t>(std::llround(mesh.positions[3 * v] / spacing), 0, width - 1);
+        const int64_t row = std::clamp<int64_t>(std::llround(-mesh.positions[3 * v + 1] / spacing), 0, width - 1);
+        out[v] = types[static_cast<size_t>(row * width + col)];
+    }
+    return out;
+}
+
 }  // namespace
 
 uint64_t hashHeights(const Heightfield& field) {
@@ -49,8 +64,10 @@ PixelWindow tileReadWindow(const TileKey& key, const TileBuildSettings& s) {
     return {w.x - apron, w.y - apron, w.width + 2 * apron, w.height + 2 * apron};
 }
 
-TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
-                    const Heightfield* parent_samples) {
+namespace {
+
+TileBuild buildTileUnguarded(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
+                             const Heightfield* parent_samples, const TypeSource* types) {
     TERRASYNTH_REQUIRE(s.mesh_step >= 1 && s.layout.tile_size % s.mesh_step == 0,
                        "tile_size must be a positive multiple of mesh_step");
     TERRASYNTH_REQUIRE(!s.geomorph || (s.layout.tile_size / s.mesh_step) % 2 == 0,
@@ -117,16 +134,49 @@ TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBu
         coarse_range = {*std::min_element(coarse.begin(), coarse.end()), *std::max_element(coarse.begin(), coarse.end())};
     }
 
-    // 4. The detached render model.
+    // 4. Terrain types for type colours (optional).
+    std::vector<float> type_ids;
+    if (types && *types) {
+        t0 = std::chrono::steady_clock::now();
+        const PixelWindow tw = s.layout.window(key);
+        Result<std::vector<uint8_t>> ids = (*types)(tw, key.level);
+        out.heights_ms += msSince(t0);
+        if (!ids) {
+            out.status = ids.status().withContext(keyName(key) + " (types)");
+            return out;
+        }
+        if (ids->size() != static_cast<size_t>(tw.width) * tw.height) {
+            out.status = Status::error(keyName(key) + ": type source returned a wrong-sized window");
+            return out;
+        }
+        type_ids = vertexTypes(mesh, *ids, tw.width, s.layout.spacing(key.level));
+    }
+
+    // 5. The detached render model.
     t0 = std::chrono::steady_clock::now();
     const double wx = s.layout.westX(key), ny = s.layout.northY(key);
     out.node = makeTileNode(mesh, wx, ny, &out.bytes, coarse.empty() ? nullptr : &coarse,
-                            s.layout.spacing(key.level + 1));
+                            s.layout.spacing(key.level + 1), type_ids.empty() ? nullptr : &type_ids);
+    out.triangles = mesh.triangleCount();
     const double span = s.layout.tileMeters(key.level);
     out.box.set(wx, ny - span, std::min(range.min, coarse_range.min) - mo.skirt_depth_m, wx + span, ny,
                 std::max(range.max, coarse_range.max));
     out.osg_ms = msSince(t0);
     return out;
+}
+
+}  // namespace
+
+TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
+                    const Heightfield* parent_samples, const TypeSource* types) {
+    // Tiles build on worker threads: anything thrown (out of memory, OSG) becomes the tile's error.
+    return invokeGuarded([&] { return buildTileUnguarded(source, key, s, parent_samples, types); },
+                         [&](const std::string& why) {
+                             TileBuild failed;
+                             failed.key = key;
+                             failed.status = Status::error(keyName(key) + ": " + why);
+                             return failed;
+                         });
 }
 
 }  // namespace terrasynth::plugin

@@ -9,7 +9,8 @@
 namespace terrasynth::plugin {
 
 osg::ref_ptr<osg::Node> makeTileNode(const TileMesh& mesh, double origin_x, double origin_y, size_t* bytes,
-                                     const std::vector<float>* parent_heights, double parent_spacing) {
+                                     const std::vector<float>* parent_heights, double parent_spacing,
+                                     const std::vector<float>* type_ids) {
     const size_t nv = mesh.vertexCount();
     osg::ref_ptr<osg::Vec3Array> vertices = new osg::Vec3Array(static_cast<unsigned>(nv));
     osg::ref_ptr<osg::Vec3Array> normals = new osg::Vec3Array(static_cast<unsigned>(nv));
@@ -37,7 +38,13 @@ osg::ref_ptr<osg::Node> makeTileNode(const TileMesh& mesh, double origin_x, doub
                                        osg::Array::BIND_PER_VERTEX);
         geometry->getOrCreateStateSet()->addUniform(
             new osg::Uniform("ts_parent_spacing", static_cast<float>(parent_spacing)));
-        extra = nv * sizeof(float);
+        extra += nv * sizeof(float);
+    }
+    if (type_ids) {
+        TERRASYNTH_REQUIRE(type_ids->size() == nv, "one type id per vertex");
+        geometry->setVertexAttribArray(kTypeAttribute, new osg::FloatArray(type_ids->begin(), type_ids->end()),
+                                       osg::Array::BIND_PER_VERTEX);
+        extra += nv * sizeof(float);
     }
 
     osg::ref_ptr<osg::MatrixTransform> transform = new osg::MatrixTransform(osg::Matrix::translate(origin_x, origin_y, 0.0));
@@ -47,6 +54,13 @@ osg::ref_ptr<osg::Node> makeTileNode(const TileMesh& mesh, double origin_x, doub
     transform->getBound();
     if (bytes) *bytes = nv * 2 * sizeof(osg::Vec3f) + mesh.indices.size() * sizeof(uint32_t) + extra;
     return transform;
+}
+
+const osg::Vec3Array* tileVertices(const osg::Node& node) {
+    const auto* transform = dynamic_cast<const osg::MatrixTransform*>(&node);
+    if (!transform || transform->getNumChildren() != 1) return nullptr;
+    const osg::Geometry* geometry = transform->getChild(0)->asGeometry();
+    return geometry ? dynamic_cast<const osg::Vec3Array*>(geometry->getVertexArray()) : nullptr;
 }
 
 }  // namespace terrasynth::plugin

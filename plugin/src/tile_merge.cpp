@@ -13,6 +13,7 @@ namespace terrasynth::plugin {
 namespace {
 constexpr size_t kMergeHistory = 4096;
 constexpr unsigned kReleaseDelayFrames = 3;  // a draw thread may still hold last frame's tiles
+constexpr double kPrefetchPriority = 1e6;   // after every tile the cull wants (those are < 1e3)
 
 // Takes over a finished build's scene node and what culling and eviction need to know of it.
 template <class Tile>
@@ -23,6 +24,8 @@ void adoptBuild(Tile& tile, const TileBuild& build) {
     tile.max_height = build.max_height;
     tile.hash = build.heights_hash;
     tile.bytes = build.bytes;
+    tile.triangles = build.triangles;
+    tile.vertices = build.node ? tileVertices(*build.node) : nullptr;
 }
 }  // namespace
 
@@ -139,6 +142,20 @@ void TerrainNode::planBuilds() {
         if (t != tiles_.end() && !t->second.dirty) continue;
         order.emplace_back(priority, key);
     }
+    // Prefetch requests come after everything the cull wants, coarsest level first (a tile is only
+    // drawn once its parent is); requests not repeated for two frames lapse.
+    for (auto it = prefetch_.begin(); it != prefetch_.end();) {
+        const TileKey key = it->first;
+        const bool lapsed = cull_frame_ != ~0u && it->second + 2 < cull_frame_;
+        auto t = tiles_.find(key);
+        if (lapsed || (t != tiles_.end() && !t->second.dirty)) {
+            it = prefetch_.erase(it);
+            continue;
+        }
+        ++it;
+        if (wanted_.count(key) || building_.count(key) || failed_.count(key)) continue;
+        order.emplace_back(kPrefetchPriority - key.level, key);
+    }
     std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<WorkerPool::Task> tasks;
     tasks.reserve(order.size());
@@ -152,15 +169,15 @@ void TerrainNode::planBuilds() {
             auto p = tiles_.find(key.parent());
             if (p != tiles_.end() && !p->second.dirty) parent = p->second.node;
         }
-        tasks.push_back({priority, [this, key, ticket, gen = generation_, source = source_, parent] {
-                             runBuild(key, ticket, gen, source, parent.get());
+        tasks.push_back({priority, [this, key, ticket, gen = generation_, source = source_, types = type_source_, parent] {
+                             runBuild(key, ticket, gen, source, types, parent.get());
                          }});
     }
     pool_->replaceQueue(std::move(tasks));
 }
 
 void TerrainNode::runBuild(const TileKey& key, uint64_t ticket, uint64_t generation, const HeightSource& source,
-                           const osg::Node* parent) {
+                           const TypeSource& types, const osg::Node* parent) {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         auto it = building_.find(key);
@@ -175,7 +192,7 @@ void TerrainNode::runBuild(const TileKey& key, uint64_t ticket, uint64_t generat
     }
     Heightfield parent_samples;
     if (parent) parent_samples = parentSamplesFromNode(*parent, key, build_settings_);
-    TileBuild build = buildTile(source, key, build_settings_, parent_samples.empty() ? nullptr : &parent_samples);
+    TileBuild build = buildTile(source, key, build_settings_, parent_samples.empty() ? nullptr : &parent_samples, &types);
     build.generation = generation;
     std::lock_guard<std::mutex> lock(mutex_);
     ++stats_.tiles_built;

@@ -55,8 +55,13 @@ void TerrainNode::cull(osgUtil::CullVisitor& cv) {
         wanted_.clear();
         drawn_.clear();
         drawn_keys_.clear();
+        stats_.drawn_triangles = 0;
         stats_.drawn_min_height = std::numeric_limits<float>::max();
         stats_.drawn_max_height = std::numeric_limits<float>::lowest();
+    }
+    {
+        const osg::RefMatrix* proj = cv.getProjectionMatrix();
+        if (!(proj && (*proj)(3, 3) == 1.0)) pixels_per_meter_at_1m_ = screenPixelsPerMeter(cv, 1.0);
     }
     // The morph shader's distance scale for this camera (see terrain_shader.cpp).
     osg::ref_ptr<osg::StateSet> lod_state;
@@ -136,6 +141,7 @@ void TerrainNode::selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile&
     tile.node->accept(cv);
     drawn_.push_back(tile.node);
     drawn_keys_.push_back(key);
+    stats_.drawn_triangles += tile.triangles;
     stats_.drawn_min_height = std::min(stats_.drawn_min_height, tile.min_height);
     stats_.drawn_max_height = std::max(stats_.drawn_max_height, tile.max_height);
 }

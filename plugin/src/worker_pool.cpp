@@ -5,7 +5,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 
+#include "terrasynth/guard.h"
 #include "terrasynth/status.h"
 
 namespace terrasynth::plugin {
@@ -75,7 +77,9 @@ void WorkerPool::workerLoop() {
         queue_.pop_back();
         ++running_;
         lock.unlock();
-        task.run();
+        // An exception must not end the worker (std::terminate); tasks report their own errors.
+        invokeGuarded([&] { task.run(); },
+                      [](const std::string& why) { std::fprintf(stderr, "terrasynth worker: %s\n", why.c_str()); });
         lock.lock();
         --running_;
         if (queue_.empty() && running_ == 0) idle_.notify_all();

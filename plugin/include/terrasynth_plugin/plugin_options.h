@@ -16,6 +16,11 @@
 //   backend=opencl|reference, device=<substring>   synthesizer selection
 //   preload=0|1            build the project extent synchronously before returning (default 1)
 //   preloadLevel=<n>       level of that preload (default: the finest with at most 4x4 tiles)
+//   sunAzimuth=<deg>, sunElevation=<deg>   where the fixed sun is (defaults 315, 40: north-west)
+//   snowLine=<m>           snow above this height (default: from the project extent's heights)
+//   fog=<m>                distance of 95% fog (default: 0.9 x the draw radius; 0 = none)
+//   typeColors=0|1         colour each painted terrain type over the tints (default 0; costs a
+//                          second synthesis per tile for the source map)
 // Tokens without '=' or with unknown keys are other plugins' options and are ignored; a known key
 // with a bad value is an error naming the key.
 #pragma once
@@ -37,6 +42,8 @@ struct PluginOptions {
     bool preload = true;
     int preload_level = -1;  // -1 = automatic
     bool max_level_given = false;  // maxLevel was in the string (else the reader may clamp it)
+    std::optional<float> sun_azimuth_deg, sun_elevation_deg, snow_line_m, fog_m;
+    bool type_colors = false;
 };
 
 Result<PluginOptions> parsePluginOptions(const std::string& option_string);

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -32,6 +33,7 @@
 #include <osg/NodeVisitor>
 
 #include "terrasynth_plugin/height_source.h"
+#include "terrasynth_plugin/terrain_look.h"
 #include "terrasynth_plugin/tile_builder.h"
 #include "terrasynth_plugin/tile_key.h"
 #include "terrasynth_plugin/worker_pool.h"
@@ -65,9 +67,6 @@ struct TerrainNodeOptions {
     bool geomorph = true;
 };
 
-// Puts the geomorphing shader program and its default uniforms on `ss` (terrain_shader.cpp).
-void installGeomorphProgram(osg::StateSet& ss);
-
 // Checks ranges; the message names the option.
 Status validateOptions(const TerrainNodeOptions& options);
 
@@ -77,6 +76,8 @@ struct TerrainStats {
     size_t pending_builds = 0;    // queued or running on workers
     size_t waiting_merge = 0;     // built, waiting for an UPDATE
     size_t drawn_tiles = 0;       // in the last cull
+    size_t drawn_triangles = 0;   // of the tiles drawn in the last cull (skirts included)
+    size_t prefetch_requests = 0; // tiles asked for by prefetch() and not yet resident
     size_t wanted_tiles = 0;      // in the last cull
     float drawn_min_height = 0.0f, drawn_max_height = 0.0f;  // over the tiles drawn in the last cull
     uint64_t tiles_built = 0, tiles_merged = 0, tiles_swapped = 0, rebuilds_unchanged = 0;
@@ -95,10 +96,42 @@ public:
     TerrainNode(HeightSource source, double meters_per_pixel, const TerrainNodeOptions& options);
 
     void traverse(osg::NodeVisitor& nv) override;
-    // The children's bound stretched upwards by two radii: viewers put their default home position
-    // 3.5 radii south of the centre looking horizontally, which for a heightfield in an unbounded
-    // world would be inside the surrounding relief; this puts it above, looking over the terrain.
+    // What viewers derive their home position from (osgGA manipulators put the eye south of the
+    // sphere's centre, at its height, looking north horizontally, at radius / sin(half fov)).
+    // With a home extent (setHomeExtent) the sphere is chosen so that this eye sees the whole extent
+    // obliquely from above: the eye 1.3 extents south of its near edge, high enough to look down on
+    // its near edge at 11 degrees (stock osgviewer's half field of view is 14.6). Without one, the children's
+    // bound stretched upwards by two radii (so the eye is above the surrounding relief).
     osg::BoundingSphere computeBound() const override;
+    // The level-0 region the home view shows (e.g. the project extent). Its height range is taken
+    // from the resident tiles over it, so call it after preload().
+    void setHomeExtent(const PixelWindow& level0_extent);
+
+    // The look (terrain_look.h): sun, tints, fog, type colours. Thread-safe; takes effect next draw.
+    void setLook(const TerrainLook& look);
+    TerrainLook look() const;
+    // Where type colours come from (e.g. a Terrain's synthesized source map); tiles built afterwards
+    // carry type ids (call invalidateAll() to rebuild resident tiles). Empty = none.
+    void setTypeSource(TypeSource types);
+
+    // Height of the terrain surface at world (x, y) as drawn without geomorphing: interpolated on the
+    // triangles of the finest resident tile containing the point (the mesh's own split: each cell's
+    // north-east to south-west diagonal). Within that tile's geometric error of the source's heights
+    // (exact at the samples of level-0 tiles). nullopt when no resident tile contains the point.
+    // `tile_level` (optional) receives the level of the tile that answered. Thread-safe; takes the
+    // node's lock only to find the tile.
+    std::optional<float> heightAt(double world_x, double world_y, int* tile_level = nullptr) const;
+    // Min and max height of the finest resident tiles over a level-0 region; nullopt if none.
+    std::optional<std::pair<float, float>> heightRange(const PixelWindow& level0_region) const;
+
+    // Asks for the tiles of `level` covering the level-0 pixel rectangle `region` to be built ahead
+    // of need (e.g. along a predicted flight path), after everything the cull wants. A request holds
+    // for the next two UPDATEs: repeat it every frame while it is still wanted. Thread-safe.
+    void prefetch(const PixelWindow& level0_region, int level);
+    // Distance (metres, eye to tile box) within which the last cull drew tiles of `level` rather than
+    // their parent: what prefetching around a future eye position needs. The view radius for the
+    // root level; 0 before the first cull.
+    double refinementDistance(int level) const;
 
     // Builds the tiles of `level` that cover the level-0 pixel rectangle `region` on the workers,
     // waits, makes them resident and the node's children (for osgconv, bounds and first frames;
@@ -135,9 +168,11 @@ private:
         osg::ref_ptr<osg::Node> node;
         osg::BoundingBox box;
         float min_height = 0.0f, max_height = 0.0f;
+        osg::ref_ptr<const osg::Vec3Array> vertices;  // for heightAt
         uint64_t hash = 0;
         uint64_t generation = 0;
         size_t bytes = 0;
+        size_t triangles = 0;
         unsigned last_used_frame = 0;
         bool dirty = false;
     };
@@ -167,7 +202,8 @@ private:
     void syncChildren();
     // Workers
     void runBuild(const TileKey& key, uint64_t ticket, uint64_t generation, const HeightSource& source,
-                  const osg::Node* parent);
+                  const TypeSource& types, const osg::Node* parent);
+    std::vector<TileKey> tilesCovering(const PixelWindow& level0_region, int level) const;
     bool staleLocked(const TileKey& key, uint64_t generation) const;
     void invalidateLocked(const Invalidation& inv);
     bool touches(const TileKey& key, const PixelWindow& level0_region) const;
@@ -178,7 +214,9 @@ private:
 
     mutable std::mutex mutex_;  // everything below
     HeightSource source_;
+    TypeSource type_source_;
     std::unordered_map<TileKey, Tile, TileKeyHash> tiles_;
+    std::unordered_map<TileKey, unsigned, TileKeyHash> prefetch_;  // key -> frame of the request
     std::unordered_map<TileKey, double, TileKeyHash> wanted_;      // by the last cull
     std::unordered_map<TileKey, Building, TileKeyHash> building_;  // queued, running or built
     uint64_t next_ticket_ = 0;
@@ -198,6 +236,10 @@ private:
     // Per-cull state carrying ts_lod_k, kept alive while a draw thread may still use it.
     std::vector<std::pair<unsigned, osg::ref_ptr<osg::StateSet>>> lod_states_;
     double build_ms_sum_ = 0.0, heights_ms_sum_ = 0.0;
+    double pixels_per_meter_at_1m_ = 0.0;  // of the last cull's camera (LOD scale included)
+    TerrainLook look_;
+    mutable std::mutex home_mutex_;   // home_bound_ (computeBound must not wait for mutex_)
+    osg::BoundingSphere home_bound_;  // valid once setHomeExtent was called
 
     std::unique_ptr<WorkerPool> pool_;  // last: destroyed (joined) first
 };

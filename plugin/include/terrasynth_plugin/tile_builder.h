@@ -15,6 +15,7 @@
 
 #include "terrasynth/mesh.h"
 #include "terrasynth_plugin/height_source.h"
+#include "terrasynth_plugin/terrain_look.h"
 #include "terrasynth_plugin/tile_key.h"
 
 namespace terrasynth::plugin {
@@ -47,6 +48,7 @@ struct TileBuild {
     float min_height = 0.0f, max_height = 0.0f;  // of the meshed samples
     uint64_t heights_hash = 0; // FNV-1a of the window's bits, apron included: equal hash = same tile
     size_t bytes = 0;          // client-side vertex and index memory of the node
+    size_t triangles = 0;      // drawn per frame when the tile is drawn (skirts included)
     double heights_ms = 0.0, mesh_ms = 0.0, osg_ms = 0.0;
 };
 
@@ -54,11 +56,12 @@ struct TileBuild {
 // of mesh_step samples on every side.
 PixelWindow tileReadWindow(const TileKey& key, const TileBuildSettings& settings);
 
-// Builds one tile. Thread-safe if `source` is. Errors (source failure, wrong window size) come back
-// in `status` with the tile key in the message. For geomorphing, `parent_samples` (from
-// parentSamplesFromNode) saves reading the parent level from `source`; null = read it.
+// Builds one tile. Thread-safe if `source` (and `types`) are. Errors (source failure, wrong window
+// size) come back in `status` with the tile key in the message. For geomorphing, `parent_samples`
+// (from parentSamplesFromNode) saves reading the parent level from `source`; null = read it. With
+// `types`, every vertex carries its sample's terrain type id (kTypeAttribute) for type colours.
 TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBuildSettings& settings,
-                    const Heightfield* parent_samples = nullptr);
+                    const Heightfield* parent_samples = nullptr, const TypeSource* types = nullptr);
 
 // The parent level's samples under `child` as geomorphing reads them ((tile_size/2 + 1)^2, of which
 // those at multiples of mesh_step are set), taken from the parent tile's built node instead of the
@@ -69,10 +72,15 @@ Heightfield parentSamplesFromNode(const osg::Node& parent_node, const TileKey& c
 // The detached OSG subgraph for a mesh whose vertices are relative to (origin_x, origin_y).
 // Copies the mesh into VBO-backed arrays; STATIC data variance (edits swap whole tiles).
 // With `parent_heights` (one per vertex) the geometry carries them as the vertex attribute
-// kCoarseHeightAttribute and the uniform "ts_parent_spacing" = parent_spacing for the morph shader.
+// kCoarseHeightAttribute and the uniform "ts_parent_spacing" = parent_spacing for the morph shader;
+// with `type_ids` (one per vertex) the attribute kTypeAttribute.
 osg::ref_ptr<osg::Node> makeTileNode(const TileMesh& mesh, double origin_x, double origin_y, size_t* bytes,
-                                     const std::vector<float>* parent_heights = nullptr, double parent_spacing = 0.0);
-constexpr unsigned kCoarseHeightAttribute = 6;
+                                     const std::vector<float>* parent_heights = nullptr, double parent_spacing = 0.0,
+                                     const std::vector<float>* type_ids = nullptr);
+
+// The vertex array of a tile node built by makeTileNode (grid vertices row-major from the north-west
+// corner, then skirt vertices), or null if `node` is not one.
+const osg::Vec3Array* tileVertices(const osg::Node& node);
 
 // Per vertex of `mesh` (vertices relative to the tile's north-west corner, `spacing` metres between
 // samples, grid step `step`, skirt `skirt_depth_m`), the height of the parent tile's mesh at the same

@@ -117,8 +117,14 @@ struct SynthesisConstraints {
 
 // Paints a round brush of `radius_px` (> 0) level-0 pixels with `value` along the polyline `line`
 // (global level-0 pixels), clipped to the paint's rectangle: the type and freeze brushes of s5.2-5.3.
+// Dabs are stamped at most max(0.5, radius/2) pixels apart; only those that reach the rectangle
+// cost anything, so the work is what strokePaintCost says.
 void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius_px,
                  uint8_t value);
+// The work paintStroke will do, in pixel rows visited (dabs reaching the rectangle times their rows,
+// plus one pass over the rectangle), computed in O(line.size()): projects refuse strokes above
+// limits::kMaxStrokePaintCost.
+uint64_t strokePaintCost(const TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius_px);
 
 // Parses the "constraints" object of a project (JSON text, docs/project-format.md) against the
 // database's type and exemplar names. `extent_*` is the project's extent: coordinates in the JSON are

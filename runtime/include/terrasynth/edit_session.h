@@ -130,7 +130,8 @@ public:
     // first (so what it newly covers holds); pastes must be unchanged (addPaste, removePaste).
     Result<PixelWindow> setConstraints(const SynthesisConstraints& next);
     // A new seed: the whole extent is synthesized afresh (constraints kept), and the reference
-    // world with it.
+    // world with it: the returned window is the extent, but the world outside changed too (a front
+    // end invalidates everything). Undoing or redoing a re-seed does the same.
     Result<PixelWindow> reseed(uint32_t seed);
 
     // The layer stack (layers.h LayerEditor operations; indices into layers().layers).

@@ -12,6 +12,7 @@
 // not committed.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,14 @@ public:
     // Writes `bytes` to a temporary beside `path` (same folder, so the rename is atomic). Errors name
     // `path` (folder missing or unwritable, disk full); the transaction then refuses to commit.
     Status stage(const std::string& path, const std::string& bytes);
+    // For writers that stream or open files themselves (a 1 GB glTF buffer, an OpenEXR encoder):
+    // `write` must create the temporary file whose name it is given, whole, and return an error
+    // naming `path` otherwise. The file is then fsync'ed and staged like stage()'s.
+    Status stageWith(const std::string& path, const std::function<Status(const std::string& temporary)>& write);
+    // What commit() needs of `path`, checked without writing anything (to refuse before spending
+    // time on what is to be written): its folder exists and is writable, and `path` itself is not
+    // a folder.
+    static Status checkTarget(const std::string& path);
     // Renames every staged file into place, in staging order. On error the previous files are back
     // and the message names the file that could not be replaced. Call once.
     Status commit();

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield.h"
 #include "terrasynth/status.h"
 #include "terrasynth/grid.h"
@@ -93,6 +94,12 @@ bool isGltfPath(const std::string& path);
 // source's error (with the window), bad options (message names the option), unwritable paths.
 Result<GltfExportStats> exportGltf(const std::string& path, const HeightSource& source,
                                    const GltfExportOptions& options);
+// The same, staged into `transaction` (.bin first, the .gltf that names it last) to be committed
+// with other outputs (file_transaction.h).
+Result<GltfExportStats> stageGltf(FileTransaction& transaction, const std::string& path, const HeightSource& source,
+                                  const GltfExportOptions& options);
+// Tiles of one export at most (each is a glTF node with its own meshes).
+constexpr int64_t kMaxGltfTiles = 65536;
 
 // Heightmap export, the format from the extension: .png (16-bit + JSON sidecar, readable as an
 // exemplar), .f32/.raw (float32 + sidecar), .exr (when built with OpenEXR), .tif/.tiff (float32
@@ -100,6 +107,10 @@ Result<GltfExportStats> exportGltf(const std::string& path, const HeightSource& 
 // origin is (origin_x_m, origin_y_m) at the north-west corner with y north). Errors name the path.
 Status exportHeightmap(const std::string& path, const Heightfield& field, double origin_x_m = 0.0,
                        double origin_y_m = 0.0);
+Status stageHeightmapExport(FileTransaction& transaction, const std::string& path, const Heightfield& field,
+                            double origin_x_m = 0.0, double origin_y_m = 0.0);
+// What exportHeightmap would say about `path`'s extension, without touching the disk.
+Status checkHeightmapExportPath(const std::string& path);
 
 struct TypeMaskOptions {
     // Box-blur radius in pixels; 0 = hard 0/255 masks. With blur the masks of all types still sum to
@@ -111,8 +122,14 @@ struct TypeMaskOptions {
 // [A-Za-z0-9_-]), 255 where the pixel's type is that type. `types` is width*height type ids (see
 // typesFromSources); pixels of unknown type (255) are 0 in every mask. Returns the paths written, in
 // type order; types absent from the map still get an (all-zero) mask so splat channels are stable.
+// The path writeTypeMasks writes the mask of type `index` to.
+std::string typeMaskPath(const std::string& prefix, const std::vector<std::string>& type_names, size_t index);
 Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int width, int height,
                                                 const std::vector<uint8_t>& types,
+                                                const std::vector<std::string>& type_names,
+                                                const TypeMaskOptions& options = {});
+Result<std::vector<std::string>> stageTypeMasks(FileTransaction& transaction, const std::string& prefix, int width,
+                                                int height, const std::vector<uint8_t>& types,
                                                 const std::vector<std::string>& type_names,
                                                 const TypeMaskOptions& options = {});
 

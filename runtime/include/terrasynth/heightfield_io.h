@@ -7,14 +7,16 @@
 //  - raw little-endian float32 (.f32 or .raw) + JSON sidecar with width, height, meters_per_pixel.
 //  - GeoTIFF (.tif/.tiff) when built with GDAL; OpenEXR (.exr, channel Y or R) when built with OpenEXR.
 // Every reader validates the data (size, finite heights, spacing) and names the file in its error.
-// Every writer writes to a temporary file in the same folder and renames it into place, so an
-// interrupted write never destroys an existing file.
+// Every writer writes to temporary files in the same folder and renames them into place together
+// (file_transaction.h), so an interrupted or failed write never destroys or mismatches existing files.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield.h"
+#include "terrasynth/limits.h"
 #include "terrasynth/status.h"
 
 namespace terrasynth {
@@ -52,7 +54,10 @@ Result<Exemplar> readExemplar(const std::string& path, const PlainPngScale* plai
 // sorted by name so database builds are deterministic.
 Result<std::vector<std::string>> listExemplarFiles(const std::string& directory);
 
-// Writers. Heights in metres.
+// Writers. Heights in metres. Each write* function is its stage* twin plus a commit of its own:
+// the stage* functions put the file(s) into `transaction` (image first, sidecar last) after
+// validating what is written, so a program writing several outputs commits them all at once and
+// on any failure leaves every previous file as it was (file_transaction.h).
 // 16-bit PNG quantised over the field's range, with a sidecar in the exemplar format (so the output
 // can be read back as an exemplar). `info` may be null.
 Status writeHeightfieldPng16(const std::string& path, const Heightfield& field,
@@ -61,6 +66,11 @@ Status writeHeightfieldPng16(const std::string& path, const Heightfield& field,
 Status writeHeightfieldF32(const std::string& path, const Heightfield& field);
 // OpenEXR single channel "Y" float; an error when built without OpenEXR.
 Status writeHeightfieldExr(const std::string& path, const Heightfield& field);
+Status stageHeightfieldPng16(FileTransaction& transaction, const std::string& path, const Heightfield& field,
+                             const ExemplarInfo* info = nullptr);
+Status stageHeightfieldF32(FileTransaction& transaction, const std::string& path, const Heightfield& field);
+Status stageHeightfieldExr(FileTransaction& transaction, const std::string& path, const Heightfield& field);
+Status stageHeightfield(FileTransaction& transaction, const std::string& path, const Heightfield& field);
 // Picks the writer from the extension (.png, .f32/.raw, .exr, any letter case); an error names
 // unknown extensions.
 Status writeHeightfield(const std::string& path, const Heightfield& field);
@@ -73,6 +83,7 @@ bool gdalAvailable();
 // 8-bit RGB hillshade (sun azimuth 315 deg, altitude 45 deg) with a soft hypsometric tint, for
 // looking at results. Slopes use the field's true spacing.
 Status writeHillshadePng(const std::string& path, const Heightfield& field);
+Status stageHillshadePng(FileTransaction& transaction, const std::string& path, const Heightfield& field);
 
 // Low-level image writers used by other stages (sources maps, masks). Row-major samples.
 // The encoders return the PNG file's bytes (for FileTransaction); the writers write them atomically.
@@ -81,6 +92,10 @@ Result<std::string> encodePng8(int width, int height, int channels, const std::v
 Status writePng16(const std::string& path, int width, int height, int channels,
                   const std::vector<uint16_t>& samples);
 Status writePng8(const std::string& path, int width, int height, int channels,
+                 const std::vector<uint8_t>& samples);
+Status stagePng16(FileTransaction& transaction, const std::string& path, int width, int height, int channels,
+                  const std::vector<uint16_t>& samples);
+Status stagePng8(FileTransaction& transaction, const std::string& path, int width, int height, int channels,
                  const std::vector<uint8_t>& samples);
 struct Image16 {
     int width = 0, height = 0, channels = 0;
@@ -95,6 +110,8 @@ Result<Image8> readPng8(const std::string& path);    // 16-bit inputs are reject
 
 // Writes `bytes` to `path` atomically (temporary file + rename). The message names the path.
 Status writeFileAtomically(const std::string& path, const std::string& bytes);
-Result<std::string> readFileBytes(const std::string& path);
+// The whole of a regular file (a folder, device or pipe is an error naming it), refused unread when
+// it is larger than `max_bytes`.
+Result<std::string> readFileBytes(const std::string& path, uint64_t max_bytes = limits::kMaxFileBytes);
 
 }  // namespace terrasynth

@@ -87,9 +87,15 @@ struct RidgeParams {
     std::vector<double> profile_m;
     double width_px = 24.0;  // standard deviation of the Gaussian cross-section (Belhadj & Audibert 2005)
 };
+// 2..limits::kMaxRidgePoints finite points within 1e6 pixels, 1..100000 profile heights within
+// 10 km, width in (0, 10000].
 Status validateRidge(const RidgeParams& p);
 // Additive relief: for each segment, crest(s) * exp(-d^2 / 2 width^2); segments combine by maximum.
+// Precondition: validateRidge(p).
 Heightfield ridgeRelief(const RidgeParams& p, int width, int height, double meters_per_pixel);
+// The pixel visits ridgeRelief makes on a width x height grid (each segment's reach clipped to the
+// grid), in O(points): layer stacks refuse ridges above limits::kMaxRidgeCost.
+uint64_t ridgeReliefCost(const RidgeParams& p, int width, int height);
 
 // ---- Texture transfer: copy-paste (s4.3) ----
 

@@ -76,6 +76,15 @@ struct MeshOptions {
 // 1 sample per side, 0 < simplify_ratio <= 1, skirt_depth_m >= 0.
 TileMesh meshHeightfield(const Heightfield& field, const MeshOptions& options = {});
 
+// Height of the grid mesh inside one cell, on the triangles meshHeightfield makes: corners nw, ne,
+// sw, se (north-west ... south-east), split along the north-east to south-west diagonal into
+// (nw, sw, ne) and (ne, sw, se). (fu, fw) in [0, 1]^2 is the position from the north-west corner,
+// fu eastwards, fw southwards. Collision and picking use it so they meet the surface that is drawn.
+inline double heightOnGridCell(double nw, double ne, double sw, double se, double fu, double fw) {
+    if (fu + fw <= 1.0) return nw + fu * (ne - nw) + fw * (sw - nw);
+    return se + (1.0 - fu) * (sw - se) + (1.0 - fw) * (ne - se);
+}
+
 // The grid step of LOD `lod` (0 = finest) when LODs halve the resolution: 2^lod.
 inline int lodStep(int lod) { return 1 << lod; }
 // The simplification ratio of LOD `lod` when LODs quarter the triangle count: 4^-lod.

@@ -46,6 +46,10 @@ struct Project {
 Result<Project> loadProject(const std::string& path);
 Result<Project> parseProject(const std::string& json_text, const std::string& path_for_messages,
                              const std::string& base_dir);
+// The extent limits every project obeys (limits.h): size 1..16384 per side, origin within +-2^28,
+// so the extent and its constraints fit the grid synthesis addresses. Terrain::fromProject checks
+// them again, so overrides (the command line's --size and --origin) cannot bypass them.
+Status checkProjectExtent(const Project& project);
 // Atomic: the previous file survives any failure.
 Status saveProject(const Project& project, const std::string& path);
 // The project's JSON text. With `folder` (where the file will live), paths inside it are written

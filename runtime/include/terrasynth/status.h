@@ -23,9 +23,10 @@ public:
     // Empty when ok. Otherwise one line, e.g. "data/a.png: not a 16-bit grayscale PNG (8-bit RGB)".
     const std::string& message() const { return message_; }
 
-    // Prefixes context such as a file or field name: "db.tsdb: " + message.
+    // Prefixes context such as a file or field name: "db.tsdb: " + message. An empty context adds
+    // nothing (never a bare ": ").
     Status withContext(const std::string& context) const {
-        return failed_ ? Status(context + ": " + message_) : *this;
+        return failed_ && !context.empty() ? Status(context + ": " + message_) : *this;
     }
 
 private:

@@ -139,7 +139,9 @@ protected:
 // 10 degrees up, direction within 15 degrees, docs/curves.md).
 // Pass the same params (coherence, history) as the synthesis that will use the result; existing
 // lifts are the starting point, so re-lifting after a small edit usually takes one or two rounds.
-// Cost: rounds x points small syntheses (about 2 ms each via PoCL). Errors: those of synthesize().
+// Cost: per round, the sites are synthesized in windows grouped by a cost model (one window where
+// the sites are dense, one small window per scattered site), so 10000 points over a 1024^2 extent
+// cost a few whole-extent syntheses per round. Errors: those of synthesize().
 struct PointLiftOptions {
     float tolerance_m = 0.5f;
     int max_rounds = 10;  // >= 1; 1 only measures

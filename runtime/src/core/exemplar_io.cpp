@@ -10,6 +10,7 @@
 
 #include "core/sidecar.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 #ifdef TERRASYNTH_HAVE_GDAL
 #include <gdal.h>
@@ -22,6 +23,23 @@ using detail::lowerExtension;
 using detail::readJsonFile;
 using detail::requireNumber;
 using detail::sidecarPathFor;
+
+// `v` is the JSON whole number `expected`, compared without narrowing (2^32 + 648 is not 648).
+bool isWholeNumber(const nlohmann::json& v, int64_t expected) {
+    if (v.is_number_unsigned()) return expected >= 0 && v.get<uint64_t>() == static_cast<uint64_t>(expected);
+    if (v.is_number_integer()) return v.get<int64_t>() == expected;
+    return false;
+}
+
+// A sidecar's width or height: a whole number 1..kMaxImageSide.
+Result<int> requireSide(const nlohmann::json& j, const char* key, const std::string& file) {
+    auto it = j.find(key);
+    if (it == j.end()) return Status::error(file + ": missing field \"" + key + "\"");
+    if (!it->is_number_integer() || it->get<int64_t>() < 1 || it->get<int64_t>() > limits::kMaxImageSide)
+        return Status::error(file + ": field \"" + key + "\" must be a whole number 1.." +
+                             std::to_string(limits::kMaxImageSide));
+    return static_cast<int>(it->get<int64_t>());
+}
 
 void readProvenance(const nlohmann::json& j, ExemplarInfo* info) {
     auto text = [&](const char* key) {
@@ -66,7 +84,10 @@ Result<Exemplar> readPngExemplar(const std::string& path, const PlainPngScale* p
     field.heights.resize(image->samples.size());
 
     const std::string sidecar = sidecarPathFor(path);
-    auto json = readJsonFile(sidecar);
+    // A sidecar that exists must be right: a broken one is its own error, never "no sidecar".
+    const bool has_sidecar = detail::pathExists(sidecar);
+    auto json = has_sidecar ? readJsonFile(sidecar) : Result<nlohmann::json>(Status::error(sidecar + ": not found"));
+    if (has_sidecar && !json) return json.status();
     if (json) {
         const nlohmann::json& j = json.value();
         auto lo = requireNumber(j, "height_min_m", sidecar);
@@ -80,7 +101,7 @@ Result<Exemplar> readPngExemplar(const std::string& path, const PlainPngScale* p
         for (const char* key : {"width", "height"}) {
             auto it = j.find(key);
             const int actual = key[0] == 'w' ? field.width : field.height;
-            if (it != j.end() && (!it->is_number_integer() || it->get<int>() != actual))
+            if (it != j.end() && !isWholeNumber(*it, actual))
                 return Status::error(sidecar + ": field \"" + key + "\" does not match the PNG (" +
                                      std::to_string(actual) + ")");
         }
@@ -105,26 +126,28 @@ Result<Exemplar> readPngExemplar(const std::string& path, const PlainPngScale* p
 
 Result<Exemplar> readRawF32Exemplar(const std::string& path) {
     const std::string sidecar = sidecarPathFor(path);
+    if (!detail::pathExists(sidecar)) return Status::error(path + ": raw float32 needs a sidecar (" + sidecar + ")");
     auto json = readJsonFile(sidecar);
-    if (!json) return Status::error(path + ": raw float32 needs a sidecar: " + json.message());
+    if (!json) return json.status();
     const nlohmann::json& j = json.value();
     Exemplar exemplar;
     exemplar.info.name = detail::fileStem(path);
     exemplar.info.path = path;
-    auto w = requireNumber(j, "width", sidecar);
+    auto w = requireSide(j, "width", sidecar);
     if (!w) return w.status();
-    auto h = requireNumber(j, "height", sidecar);
+    auto h = requireSide(j, "height", sidecar);
     if (!h) return h.status();
-    if (w.value() < 1 || h.value() < 1 || w.value() > 65536 || h.value() > 65536)
-        return Status::error(sidecar + ": width and height must be 1..65536");
     Heightfield& field = exemplar.field;
-    field.width = static_cast<int>(w.value());
-    field.height = static_cast<int>(h.value());
+    field.width = w.value();
+    field.height = h.value();
+    if (static_cast<uint64_t>(field.width) * field.height > limits::kMaxImagePixels)
+        return Status::error(sidecar + ": " + std::to_string(field.width) + "x" + std::to_string(field.height) +
+                             " is more than " + std::to_string(limits::kMaxImagePixels) + " pixels");
     Status spacing = detail::readSpacing(j, sidecar, &field.meters_per_pixel_x, &field.meters_per_pixel_y);
     if (!spacing) return spacing;
-    auto bytes = readFileBytes(path);
-    if (!bytes) return bytes.status();
     const size_t expected = static_cast<size_t>(field.width) * field.height * sizeof(float);
+    auto bytes = readFileBytes(path, expected);  // a larger file is refused unread
+    if (!bytes) return bytes.status();
     if (bytes->size() != expected)
         return Status::error(path + ": expected " + std::to_string(expected) + " bytes for " +
                              std::to_string(field.width) + "x" + std::to_string(field.height) +

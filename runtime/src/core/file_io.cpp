@@ -1,12 +1,12 @@
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <sstream>
-#include <unistd.h>
 
 #include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth {
 
@@ -16,13 +16,28 @@ Status writeFileAtomically(const std::string& path, const std::string& bytes) {
     return transaction.commit();
 }
 
-Result<std::string> readFileBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return Status::error(path + ": cannot open: " + std::strerror(errno));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) return Status::error(path + ": read error");
-    return buffer.str();
+Result<std::string> readFileBytes(const std::string& path, uint64_t max_bytes) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return Status::error(path + ": cannot open: " + std::strerror(errno));
+    // Regular files only: a folder reads as nothing, a device or pipe may never end.
+    struct stat st {};
+    const bool stated = ::fstat(fileno(f), &st) == 0;
+    if (!stated || !S_ISREG(st.st_mode)) {
+        std::fclose(f);
+        return Status::error(path + (stated && S_ISDIR(st.st_mode) ? ": is a folder, not a file" : ": not a regular file"));
+    }
+    const uint64_t size = static_cast<uint64_t>(st.st_size);
+    if (size > max_bytes) {
+        std::fclose(f);
+        return Status::error(path + ": " + std::to_string(size) + " bytes, more than the " + std::to_string(max_bytes) +
+                             " this kind of file may have");
+    }
+    std::string bytes(size, '\0');
+    const size_t got = size ? std::fread(bytes.data(), 1, size, f) : 0;
+    const bool failed = std::ferror(f) != 0;
+    std::fclose(f);
+    if (failed || got != size) return Status::error(path + ": read error (the file changed while reading?)");
+    return bytes;
 }
 
 }  // namespace terrasynth

@@ -2,6 +2,7 @@
 // whole set is in place, so a failed rename can put them back without a moment where they are gone.
 #include "terrasynth/file_transaction.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -9,6 +10,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+
+#include "core/paths.h"
+#include "terrasynth/guard.h"
 
 namespace terrasynth {
 namespace {
@@ -30,6 +34,14 @@ Status writeWhole(const std::string& temp, const std::string& path, const std::s
         return Status::error(path + ": write failed (disk full?)");
     }
     return Status::ok();
+}
+
+// Flushes a file written by someone else to disk, so a rename never exposes unwritten blocks.
+bool syncFile(const std::string& temp) {
+    const int fd = ::open(temp.c_str(), O_RDONLY);
+    if (fd < 0) return false;
+    const bool synced = ::fsync(fd) == 0;
+    return ::close(fd) == 0 && synced;
 }
 
 bool exists(const std::string& path) {
@@ -60,6 +72,35 @@ Status FileTransaction::stage(const std::string& path, const std::string& bytes)
     return Status::ok();
 }
 
+Status FileTransaction::stageWith(const std::string& path,
+                                  const std::function<Status(const std::string& temporary)>& write) {
+    TERRASYNTH_REQUIRE(!done_, "FileTransaction::stageWith after commit");
+    if (!failed_) return failed_;
+    const std::string temp = path + ".tmp" + uniqueSuffix();
+    // Whatever the writer throws (an encoder's exception) becomes the error, and its temporary goes.
+    Status s = guarded(path, [&] { return write(temp); });
+    if (s && !syncFile(temp)) s = Status::error(path + ": write failed (disk full?)");
+    if (!s) {
+        std::remove(temp.c_str());
+        failed_ = s;
+        return s;
+    }
+    staged_.push_back({path, temp});
+    return Status::ok();
+}
+
+Status FileTransaction::checkTarget(const std::string& path) {
+    if (path.empty()) return Status::error("an empty output file name");
+    struct stat st;
+    if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return Status::error(path + ": is a folder");
+    const std::string folder = detail::folderOf(path);
+    if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+        return Status::error(path + ": the folder " + folder + " does not exist");
+    if (::access(folder.c_str(), W_OK) != 0)
+        return Status::error(path + ": cannot write in " + folder + ": " + std::strerror(errno));
+    return Status::ok();
+}
+
 std::vector<std::string> FileTransaction::paths() const {
     std::vector<std::string> out;
     for (const Staged& s : staged_) out.push_back(s.path);
@@ -85,7 +126,7 @@ Status FileTransaction::commit() {
         }
     };
     for (size_t i = 0; i < staged_.size(); ++i) {
-        const Staged& s = staged_[i];
+        const Staged s = staged_[i];  // a copy: discard() below empties staged_
         std::string backup;
         if (exists(s.path)) {
             backup = s.path + ".bak" + uniqueSuffix();

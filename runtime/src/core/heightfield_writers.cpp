@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "core/sidecar.h"
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield_io.h"
 
 #ifdef TERRASYNTH_HAVE_OPENEXR
@@ -29,7 +30,8 @@ bool openExrAvailable() {
 #endif
 }
 
-Status writeHeightfieldPng16(const std::string& path, const Heightfield& field, const ExemplarInfo* info) {
+Status stageHeightfieldPng16(FileTransaction& transaction, const std::string& path, const Heightfield& field,
+                             const ExemplarInfo* info) {
     Status valid = validateHeightfield(field);
     if (!valid) return valid.withContext(path);
     const HeightRange range = heightRange(field);
@@ -54,13 +56,12 @@ Status writeHeightfieldPng16(const std::string& path, const Heightfield& field, 
     } else {
         sidecar["source"] = "terrasynth";
     }
-    // Sidecar first: a reader never sees a new PNG with a stale sidecar's range.
-    Status s = writeFileAtomically(detail::sidecarPathFor(path), sidecar.dump(1) + "\n");
-    if (!s) return s;
-    return writePng16(path, field.width, field.height, 1, samples);
+    // The sidecar is staged last: it describes the PNG, so it is the last file to change.
+    if (Status s = stagePng16(transaction, path, field.width, field.height, 1, samples); !s) return s;
+    return transaction.stage(detail::sidecarPathFor(path), detail::dumpJson(sidecar, 1) + "\n");
 }
 
-Status writeHeightfieldF32(const std::string& path, const Heightfield& field) {
+Status stageHeightfieldF32(FileTransaction& transaction, const std::string& path, const Heightfield& field) {
     Status valid = validateHeightfield(field);
     if (!valid) return valid.withContext(path);
     nlohmann::json sidecar = {
@@ -71,36 +72,52 @@ Status writeHeightfieldF32(const std::string& path, const Heightfield& field) {
         {"meters_per_pixel", spacingJson(field)},
         {"source", "terrasynth"},
     };
-    Status s = writeFileAtomically(detail::sidecarPathFor(path), sidecar.dump(1) + "\n");
-    if (!s) return s;
     std::string bytes(field.heights.size() * sizeof(float), '\0');
     std::memcpy(bytes.data(), field.heights.data(), bytes.size());
-    return writeFileAtomically(path, bytes);
+    if (Status s = transaction.stage(path, bytes); !s) return s;
+    return transaction.stage(detail::sidecarPathFor(path), detail::dumpJson(sidecar, 1) + "\n");
 }
 
-Status writeHeightfieldExr(const std::string& path, const Heightfield& field) {
+Status stageHeightfieldExr(FileTransaction& transaction, const std::string& path, const Heightfield& field) {
 #ifdef TERRASYNTH_HAVE_OPENEXR
     Status valid = validateHeightfield(field);
     if (!valid) return valid.withContext(path);
-    const std::string temp = path + ".tmp.exr";
-    try {
-        Imf::Header header(field.width, field.height);
-        header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
-        Imf::OutputFile file(temp.c_str(), header);
-        Imf::FrameBuffer frame;
-        frame.insert("Y", Imf::Slice(Imf::FLOAT, (char*)field.heights.data(), sizeof(float),
-                                     sizeof(float) * field.width));
-        file.setFrameBuffer(frame);
-        file.writePixels(field.height);
-    } catch (const std::exception& e) {
-        std::remove(temp.c_str());
-        return Status::error(path + ": OpenEXR write failed: " + e.what());
-    }
-    if (std::rename(temp.c_str(), path.c_str()) != 0) return Status::error(path + ": cannot replace file");
-    return Status::ok();
+    return transaction.stageWith(path, [&](const std::string& temp) {
+        try {
+            Imf::Header header(field.width, field.height);
+            header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+            Imf::OutputFile file(temp.c_str(), header);
+            Imf::FrameBuffer frame;
+            frame.insert("Y", Imf::Slice(Imf::FLOAT, (char*)field.heights.data(), sizeof(float),
+                                         sizeof(float) * field.width));
+            file.setFrameBuffer(frame);
+            file.writePixels(field.height);
+        } catch (const std::exception& e) {
+            return Status::error(path + ": OpenEXR write failed: " + e.what());
+        }
+        return Status::ok();
+    });
 #else
     return Status::error(path + ": this build has no OpenEXR support (install libopenexr-dev and rebuild)");
 #endif
+}
+
+Status writeHeightfieldPng16(const std::string& path, const Heightfield& field, const ExemplarInfo* info) {
+    FileTransaction transaction;
+    if (Status s = stageHeightfieldPng16(transaction, path, field, info); !s) return s;
+    return transaction.commit();
+}
+
+Status writeHeightfieldF32(const std::string& path, const Heightfield& field) {
+    FileTransaction transaction;
+    if (Status s = stageHeightfieldF32(transaction, path, field); !s) return s;
+    return transaction.commit();
+}
+
+Status writeHeightfieldExr(const std::string& path, const Heightfield& field) {
+    FileTransaction transaction;
+    if (Status s = stageHeightfieldExr(transaction, path, field); !s) return s;
+    return transaction.commit();
 }
 
 Status checkHeightfieldPath(const std::string& path) {
@@ -109,12 +126,18 @@ Status checkHeightfieldPath(const std::string& path) {
     return Status::error(path + ": unknown heightmap extension \"" + ext + "\" (use .png, .f32, .raw or .exr)");
 }
 
-Status writeHeightfield(const std::string& path, const Heightfield& field) {
+Status stageHeightfield(FileTransaction& transaction, const std::string& path, const Heightfield& field) {
     if (Status s = checkHeightfieldPath(path); !s) return s;
     const std::string ext = detail::lowerExtension(path);
-    if (ext == ".png") return writeHeightfieldPng16(path, field);
-    if (ext == ".exr") return writeHeightfieldExr(path, field);
-    return writeHeightfieldF32(path, field);
+    if (ext == ".png") return stageHeightfieldPng16(transaction, path, field);
+    if (ext == ".exr") return stageHeightfieldExr(transaction, path, field);
+    return stageHeightfieldF32(transaction, path, field);
+}
+
+Status writeHeightfield(const std::string& path, const Heightfield& field) {
+    FileTransaction transaction;
+    if (Status s = stageHeightfield(transaction, path, field); !s) return s;
+    return transaction.commit();
 }
 
 }  // namespace terrasynth

@@ -1,12 +1,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield_io.h"
 
 namespace terrasynth {
 
-Status writeHillshadePng(const std::string& path, const Heightfield& field) {
-    if (field.empty()) return Status::error(path + ": empty heightfield");
+Status stageHillshadePng(FileTransaction& transaction, const std::string& path, const Heightfield& field) {
+    if (Status s = validateHeightfield(field); !s) return s.withContext(path);
     const double kPi = 3.14159265358979323846;
     const double azimuth = 315.0 * kPi / 180.0, altitude = 45.0 * kPi / 180.0;
     // Light direction in (east, south, up): azimuth measured clockwise from north.
@@ -34,7 +35,13 @@ Status writeHillshadePng(const std::string& path, const Heightfield& field) {
             px[2] = static_cast<uint8_t>(std::clamp(255.0 * b * light, 0.0, 255.0));
         }
     }
-    return writePng8(path, field.width, field.height, 3, rgb);
+    return stagePng8(transaction, path, field.width, field.height, 3, rgb);
+}
+
+Status writeHillshadePng(const std::string& path, const Heightfield& field) {
+    FileTransaction transaction;
+    if (Status s = stageHillshadePng(transaction, path, field); !s) return s;
+    return transaction.commit();
 }
 
 }  // namespace terrasynth

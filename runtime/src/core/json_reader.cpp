@@ -1,10 +1,60 @@
 #include "core/json_reader.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "terrasynth/limits.h"
 
 namespace terrasynth::detail {
 
 using nlohmann::json;
+
+namespace {
+
+// Deepest nesting of [ and { outside strings; stops counting once past `limit`.
+int nestingDepth(const std::string& text, int limit) {
+    int depth = 0, deepest = 0;
+    bool in_string = false, escaped = false;
+    for (char c : text) {
+        if (in_string) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+            if (deepest > limit) return deepest;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+}  // namespace
+
+Result<json> parseJson(const std::string& text, const std::string& where) {
+    if (text.size() > limits::kMaxJsonBytes)
+        return Status::error(where + ": JSON text of " + std::to_string(text.size()) + " bytes (at most " +
+                             std::to_string(limits::kMaxJsonBytes) + ")");
+    if (nestingDepth(text, limits::kMaxJsonDepth) > limits::kMaxJsonDepth)
+        return Status::error(where + ": JSON nested more than " + std::to_string(limits::kMaxJsonDepth) + " levels deep");
+    try {
+        return json::parse(text);
+    } catch (const json::exception& e) {
+        // A syntax error, or a number out of double's range (out_of_range.406); what() is
+        // "[json.exception.parse_error.101] parse error at line 1, column 2: ...".
+        std::string why = e.what();
+        const size_t at = why.find("] ");
+        if (at != std::string::npos) why = why.substr(at + 2);
+        return Status::error(where + ": malformed JSON: " + why);
+    }
+}
+
+std::string dumpJson(const json& value, int indent) {
+    return value.dump(indent, ' ', /*ensure_ascii=*/false, json::error_handler_t::replace);
+}
 
 std::string compactNumber(double v) {
     std::string s = std::to_string(v);

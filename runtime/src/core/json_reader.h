@@ -66,4 +66,13 @@ private:
 // Decimal text of v without trailing zeros ("0.25", "12", "1000000").
 std::string compactNumber(double v);
 
+// The one JSON parser of the runtime: refuses texts over limits::kMaxJsonBytes or nested deeper
+// than limits::kMaxJsonDepth before parsing (so neither the parser nor any later copy of the tree
+// can exhaust the stack), then parses. Errors start with `where` (a file or field name):
+// "world.tsyn: malformed JSON: syntax error at line 3, column 7: ...".
+Result<nlohmann::json> parseJson(const std::string& text, const std::string& where);
+// Serialises with invalid UTF-8 (a file name in a legacy encoding) replaced by U+FFFD instead of
+// throwing. indent < 0: compact.
+std::string dumpJson(const nlohmann::json& value, int indent = -1);
+
 }  // namespace terrasynth::detail

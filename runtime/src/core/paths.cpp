@@ -1,5 +1,7 @@
 #include "core/paths.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 #include <climits>
@@ -80,6 +82,11 @@ std::string pathForFileIn(const std::string& folder, const std::string& path) {
     if (target.size() > dir.size() + 1 && target.compare(0, dir.size(), dir) == 0 && target[dir.size()] == '/')
         return target.substr(dir.size() + 1);
     return target;
+}
+
+bool pathExists(const std::string& path) {
+    struct stat st;
+    return ::lstat(path.c_str(), &st) == 0;
 }
 
 }  // namespace terrasynth::detail

@@ -19,6 +19,8 @@ std::string lowerExtension(const std::string& path);
 bool hasExtension(const std::string& path, const char* ext);
 // "dir/name.png" -> "dir/name.json"
 std::string sidecarPathFor(const std::string& path);
+// Whether anything (file, folder, link) exists at `path`.
+bool pathExists(const std::string& path);
 // "dir/name.png" -> "dir/name" + suffix (the extension replaced; appended when there is none).
 std::string replaceExtension(const std::string& path, const std::string& suffix);
 

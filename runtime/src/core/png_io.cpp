@@ -4,7 +4,9 @@
 #include <csetjmp>
 #include <cstring>
 
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth {
 namespace {
@@ -63,9 +65,21 @@ Result<DecodedPng> decodePng(const std::string& path) {
     png_uint_32 w = 0, h = 0;
     int depth = 0, color = 0;
     png_get_IHDR(png, info, &w, &h, &depth, &color, nullptr, nullptr, nullptr);
-    if (w == 0 || h == 0 || w > 65536 || h > 65536) {
+    // Checked against the header before anything is allocated: the size limits, and what the file
+    // can hold at all (rows of filtered samples from a deflate stream no larger than the file).
+    const uint64_t pixels = static_cast<uint64_t>(w) * h;
+    const uint64_t encoded_bytes = (static_cast<uint64_t>(png_get_rowbytes(png, info)) + 1) * h;
+    if (w == 0 || h == 0 || w > static_cast<png_uint_32>(limits::kMaxImageSide) ||
+        h > static_cast<png_uint_32>(limits::kMaxImageSide) || pixels > limits::kMaxImagePixels) {
         png_destroy_read_struct(&png, &info, nullptr);
-        return Status::error(path + ": absurd PNG size " + std::to_string(w) + "x" + std::to_string(h));
+        return Status::error(path + ": PNG header claims " + std::to_string(w) + "x" + std::to_string(h) +
+                             " pixels (at most " + std::to_string(limits::kMaxImageSide) + " per side and " +
+                             std::to_string(limits::kMaxImagePixels) + " in all)");
+    }
+    if (encoded_bytes > static_cast<uint64_t>(data.size()) * limits::kMaxDeflateExpansion) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        return Status::error(path + ": PNG header claims " + std::to_string(w) + "x" + std::to_string(h) +
+                             " pixels, more than a " + std::to_string(data.size()) + "-byte file can hold (corrupt or truncated)");
     }
     if (color == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
     if (color == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
@@ -131,11 +145,6 @@ std::vector<uint8_t> bigEndian16(const std::vector<uint16_t>& samples) {
     return big_endian;
 }
 
-Status writeEncoded(const std::string& path, const Result<std::string>& encoded) {
-    if (!encoded) return encoded.status().withContext(path);
-    return writeFileAtomically(path, *encoded);
-}
-
 }  // namespace
 
 Result<Image16> readPng16(const std::string& path) {
@@ -171,14 +180,32 @@ Result<std::string> encodePng8(int width, int height, int channels, const std::v
     return encodePng(width, height, channels, 8, samples.data());
 }
 
+Status stagePng16(FileTransaction& transaction, const std::string& path, int width, int height, int channels,
+                  const std::vector<uint16_t>& samples) {
+    auto encoded = encodePng16(width, height, channels, samples);
+    if (!encoded) return encoded.status().withContext(path);
+    return transaction.stage(path, encoded.value());
+}
+
+Status stagePng8(FileTransaction& transaction, const std::string& path, int width, int height, int channels,
+                 const std::vector<uint8_t>& samples) {
+    auto encoded = encodePng8(width, height, channels, samples);
+    if (!encoded) return encoded.status().withContext(path);
+    return transaction.stage(path, encoded.value());
+}
+
 Status writePng16(const std::string& path, int width, int height, int channels,
                   const std::vector<uint16_t>& samples) {
-    return writeEncoded(path, encodePng16(width, height, channels, samples));
+    FileTransaction transaction;
+    if (Status s = stagePng16(transaction, path, width, height, channels, samples); !s) return s;
+    return transaction.commit();
 }
 
 Status writePng8(const std::string& path, int width, int height, int channels,
                  const std::vector<uint8_t>& samples) {
-    return writeEncoded(path, encodePng8(width, height, channels, samples));
+    FileTransaction transaction;
+    if (Status s = stagePng8(transaction, path, width, height, channels, samples); !s) return s;
+    return transaction.commit();
 }
 
 }  // namespace terrasynth

@@ -4,15 +4,16 @@
 #include <cmath>
 
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth::detail {
 
 Result<nlohmann::json> readJsonFile(const std::string& path) {
-    auto bytes = readFileBytes(path);
+    auto bytes = readFileBytes(path, limits::kMaxJsonBytes);
     if (!bytes) return bytes.status();
-    nlohmann::json j = nlohmann::json::parse(bytes.value(), nullptr, /*allow_exceptions=*/false);
-    if (j.is_discarded()) return Status::error(path + ": malformed JSON");
-    if (!j.is_object()) return Status::error(path + ": expected a JSON object at the top level");
+    auto j = parseJson(bytes.value(), path);
+    if (!j) return j.status();
+    if (!j->is_object()) return Status::error(path + ": expected a JSON object at the top level");
     return j;
 }
 

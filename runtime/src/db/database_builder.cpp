@@ -7,8 +7,10 @@
 #include <map>
 #include <unistd.h>
 
-#include "db/db_internal.h"
 #include "core/hash.h"
+#include "core/json_reader.h"
+#include "db/db_internal.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth {
 namespace {
@@ -220,6 +222,20 @@ Result<std::shared_ptr<ExemplarDatabase>> buildFromExemplars(std::vector<Exempla
         for (const Exemplar& e : exemplars)
             spacing = std::max({spacing, e.field.meters_per_pixel_x, e.field.meters_per_pixel_y});
     database->meters_per_pixel = spacing;
+    // What resampling to `spacing` makes of every exemplar, checked before any of it is allocated:
+    // a fine spacing asked of coarse exemplars multiplies their pixels.
+    double total_pixels = 0.0;
+    for (const Exemplar& e : exemplars) {
+        const double w = std::round(e.field.width * e.field.meters_per_pixel_x / spacing);
+        const double h = std::round(e.field.height * e.field.meters_per_pixel_y / spacing);
+        total_pixels += w * h;
+        if (w > limits::kMaxImageSide || h > limits::kMaxImageSide ||
+            total_pixels > static_cast<double>(limits::kMaxDatabasePixels))
+            return Status::error(e.info.path + ": at " + detail::compactNumber(spacing) + " m/pixel the exemplars take " +
+                                 detail::compactNumber(total_pixels) + " pixels (this one " + detail::compactNumber(w) + "x" +
+                                 detail::compactNumber(h) + "); a database holds at most " +
+                                 std::to_string(limits::kMaxDatabasePixels) + ": use a coarser --meters-per-pixel");
+    }
 
     report(options, "resampling", 0.0);
     for (size_t e = 0; e < exemplars.size(); ++e) {

@@ -4,10 +4,12 @@
 // truncated or corrupt file is reported, never partially trusted.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstring>
 #include <type_traits>
 
 #include "db/db_internal.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth {
 namespace {
@@ -37,7 +39,7 @@ public:
     template <class T>
     void array(const std::vector<T>& v) {
         pod<uint64_t>(v.size());
-        bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+        if (!v.empty()) bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
     }
     std::string& bytes() { return bytes_; }
 
@@ -67,7 +69,7 @@ public:
         uint64_t n = 0;
         if (!pod(&n) || n > (size_ - offset_) / sizeof(T)) return false;
         v->resize(n);
-        std::memcpy(v->data(), data_ + offset_, n * sizeof(T));
+        if (n > 0) std::memcpy(v->data(), data_ + offset_, n * sizeof(T));  // an empty vector's data() may be null
         offset_ += n * sizeof(T);
         return true;
     }
@@ -109,31 +111,88 @@ std::string serialise(const ExemplarDatabase& db) {
     return std::move(w.bytes());
 }
 
-// Structural checks so a file that parses but is inconsistent cannot drive the synthesizer out of
-// bounds (indices into the atlas, rectangles inside it).
+// Every invariant the synthesis kernels rely on, so a file that parses (a valid checksum proves
+// nothing about who wrote it) cannot drive either backend out of bounds. The kernels only ever hold
+// coordinates inside an exemplar's interior (kInteriorMargin from its edges) and read one pixel
+// around them, so: every rectangle is empty or at least 5x5 and inside the atlas; the pixels inside
+// rectangle e say exemplar e and carry a known type; the PatchMatch match of such a pixel and every
+// seed coordinate lie in some exemplar's interior; an exemplar present at a level is present at
+// every finer one (upsampling maps its pixels there); appearance scales are finite and positive.
+Status checkLevel(const ExemplarDatabase& db, size_t index) {
+    const DatabaseLevel& l = db.levels[index];
+    const std::string where = "level " + std::to_string(index) + ": ";
+    if (l.width <= 0 || l.height <= 0 || l.pixelCount() > limits::kMaxImagePixels)
+        return Status::error(where + "atlas size " + std::to_string(l.width) + "x" + std::to_string(l.height) + " out of range");
+    const size_t n = l.pixelCount();
+    if (l.height_m.size() != n || l.appearance.size() != 4 * n || l.similar.size() != n || l.type.size() != n ||
+        l.exemplar.size() != n || l.rects.size() != db.exemplars.size())
+        return Status::error(where + "arrays do not match the atlas size");
+    for (int m = 0; m < 4; ++m)
+        if (!std::isfinite(l.appearance_offset[m]) || !(l.appearance_scale[m] >= 1e-30f && l.appearance_scale[m] <= 1e6f))
+            return Status::error(where + "appearance mode " + std::to_string(m) + " has a scale or offset out of range");
+    for (float h : l.height_m)
+        if (!(std::fabs(h) <= 1e5f)) return Status::error(where + "a height is not finite or beyond 100 km");
+    constexpr int kMinimumSide = 2 * kInteriorMargin + 1;
+    auto interior = [&](uint32_t q) {
+        const uint8_t e = l.exemplar[q];
+        if (e == kNoExemplar || e >= l.rects.size()) return false;
+        const AtlasRect& r = l.rects[e];
+        const int x = static_cast<int>(q % static_cast<uint32_t>(l.width)), y = static_cast<int>(q / static_cast<uint32_t>(l.width));
+        return x >= r.x + kInteriorMargin && y >= r.y + kInteriorMargin && x < r.x + r.width - kInteriorMargin &&
+               y < r.y + r.height - kInteriorMargin;
+    };
+    // Rectangles first (their bounds are what the pixel checks below rely on), then which pixels
+    // name which exemplar, then what the pixels inside each rectangle hold.
+    for (size_t e = 0; e < l.rects.size(); ++e) {
+        const AtlasRect& r = l.rects[e];
+        const bool empty = r.width == 0 && r.height == 0;
+        if (r.x < 0 || r.y < 0 || (!empty && (r.width < kMinimumSide || r.height < kMinimumSide)) ||
+            int64_t(r.x) + r.width > l.width || int64_t(r.y) + r.height > l.height)
+            return Status::error(where + "exemplar " + std::to_string(e) + " rectangle is outside the atlas or smaller than " +
+                                 std::to_string(kMinimumSide) + "x" + std::to_string(kMinimumSide));
+        const bool coarser_has_it = index + 1 < db.levels.size() && db.levels[index + 1].rects.size() > e &&
+                                    db.levels[index + 1].rects[e].width > 0;
+        if (empty && coarser_has_it)
+            return Status::error(where + "exemplar " + std::to_string(e) + " is missing below a level that has it");
+    }
+    for (size_t p = 0; p < n; ++p)
+        if (l.exemplar[p] != kNoExemplar && (l.exemplar[p] >= l.rects.size() || l.rects[l.exemplar[p]].width == 0))
+            return Status::error(where + "a pixel names a missing exemplar");
+    for (uint32_t q : l.similar)
+        if (q >= n) return Status::error(where + "similarity index out of range");
+    for (size_t e = 0; e < l.rects.size(); ++e) {
+        const AtlasRect& r = l.rects[e];
+        for (int y = r.y; y < r.y + r.height; ++y)
+            for (int x = r.x; x < r.x + r.width; ++x) {
+                const size_t p = static_cast<size_t>(y) * l.width + x;
+                if (l.exemplar[p] != e || l.type[p] >= db.type_names.size())
+                    return Status::error(where + "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                         ") inside exemplar " + std::to_string(e) + " names another exemplar or an unknown type");
+                if (!interior(l.similar[p]))
+                    return Status::error(where + "the similarity table points outside the exemplars at (" + std::to_string(x) +
+                                         ", " + std::to_string(y) + ")");
+            }
+    }
+    if (l.type_seeds.size() > db.type_names.size()) return Status::error(where + "more seed lists than types");
+    size_t seeds = 0;
+    for (const auto& list : l.type_seeds) {
+        for (uint32_t q : list)
+            if (q >= n || !interior(q)) return Status::error(where + "a type seed lies outside the exemplars");
+        seeds += list.size();
+    }
+    if (seeds == 0) return Status::error(where + "no seed coordinates");
+    return Status::ok();
+}
+
 Status checkConsistency(const ExemplarDatabase& db) {
     if (db.levels.empty()) return Status::error("no pyramid levels");
-    if (!(db.meters_per_pixel > 0.0)) return Status::error("bad spacing");
+    if (!(db.meters_per_pixel > 0.0 && db.meters_per_pixel <= 1e5)) return Status::error("meters_per_pixel out of range");
+    if (db.exemplars.empty() || db.type_names.empty()) return Status::error("no exemplars or no terrain types");
     if (db.exemplar_type.size() != db.exemplars.size()) return Status::error("exemplar table mismatch");
     for (int t : db.exemplar_type)
         if (t < 0 || t >= static_cast<int>(db.type_names.size())) return Status::error("exemplar type out of range");
-    for (const DatabaseLevel& l : db.levels) {
-        const size_t n = l.pixelCount();
-        if (l.width <= 0 || l.height <= 0 || l.height_m.size() != n || l.appearance.size() != 4 * n ||
-            l.similar.size() != n || l.type.size() != n || l.exemplar.size() != n ||
-            l.rects.size() != db.exemplars.size())
-            return Status::error("level arrays do not match the atlas size");
-        for (uint32_t s : l.similar)
-            if (s >= n) return Status::error("similarity index out of range");
-        for (const auto& seeds : l.type_seeds)
-            for (uint32_t s : seeds)
-                if (s >= n) return Status::error("type seed out of range");
-        for (const AtlasRect& r : l.rects)
-            if (r.x < 0 || r.y < 0 || r.width < 0 || r.height < 0 || r.x + r.width > l.width || r.y + r.height > l.height)
-                return Status::error("exemplar rectangle outside the atlas");
-        for (uint8_t e : l.exemplar)
-            if (e != kNoExemplar && e >= db.exemplars.size()) return Status::error("exemplar index out of range");
-    }
+    for (size_t i = 0; i < db.levels.size(); ++i)
+        if (Status s = checkLevel(db, i); !s) return s;
     return Status::ok();
 }
 

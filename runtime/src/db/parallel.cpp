@@ -2,6 +2,7 @@
 #include <thread>
 
 #include "db/db_internal.h"
+#include "terrasynth/guard.h"
 
 namespace terrasynth::db {
 
@@ -13,12 +14,14 @@ void parallelRows(int rows, int threads, const std::function<void(int, int)>& bo
         return;
     }
     std::vector<std::thread> pool;
+    FirstException first;  // rethrown here, never std::terminate in a worker
     const int chunk = (rows + threads - 1) / threads;
     for (int t = 0; t < threads; ++t) {
         const int begin = t * chunk, end = std::min(rows, begin + chunk);
-        if (begin < end) pool.emplace_back(body, begin, end);
+        if (begin < end) pool.emplace_back([&, begin, end] { first.run([&] { body(begin, end); }); });
     }
     for (auto& th : pool) th.join();
+    first.rethrow();
 }
 
 }  // namespace terrasynth::db

@@ -11,6 +11,7 @@
 #include "export/colors.h"
 #include "core/paths.h"
 #include "export/export_internal.h"
+#include "terrasynth/guard.h"
 
 namespace terrasynth {
 
@@ -28,29 +29,12 @@ Status checkOptions(const GltfExportOptions& o) {
     if (o.texture_size < 0 || o.texture_size > 8192)
         return Status::error("texture_size: must be 0..8192, got " + std::to_string(o.texture_size));
     if (o.level < 0) return Status::error("level: must not be negative");
+    // Every tile is a glTF node with its own meshes: bound the count before allocating them.
+    const int64_t tiles = int64_t((o.region.width - 2) / o.tile_size + 1) * ((o.region.height - 2) / o.tile_size + 1);
+    if (tiles > kMaxGltfTiles)
+        return Status::error("tile_size: " + std::to_string(o.tile_size) + " cuts the region into " + std::to_string(tiles) +
+                             " tiles, at most " + std::to_string(kMaxGltfTiles) + "; use larger tiles");
     return Status::ok();
-}
-
-// Runs body(i) for i in [0, n) on `threads` threads; stops handing out work after the first error.
-Status parallelFor(int n, int threads, const std::function<Status(int)>& body) {
-    std::atomic<int> next{0};
-    std::mutex mutex;
-    Status first = Status::ok();
-    auto worker = [&] {
-        for (int i = next++; i < n; i = next++) {
-            Status s = body(i);
-            if (!s) {
-                std::lock_guard<std::mutex> lock(mutex);
-                if (first) first = s;
-                next = n;
-            }
-        }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
-    return first;
 }
 
 Heightfield cropField(const Heightfield& f, int x0, int y0, int w, int h) {
@@ -85,7 +69,7 @@ public:
         }
     }
 
-    Result<GltfExportStats> run(const std::string& path) {
+    Result<GltfExportStats> run(FileTransaction& transaction, const std::string& path) {
         if (Status s = parallelFor(tiles_y_, threads_, [this](int ty) { return meshBand(ty); }); !s) return s;
         const float lo = *std::min_element(band_min_.begin(), band_min_.end());
         const float hi = *std::max_element(band_max_.begin(), band_max_.end());
@@ -126,7 +110,8 @@ public:
         ModelInputs inputs{&o_, &frame, &packed, tiles_x_, tiles_y_, &png};
         buildModel(inputs, model, layout);
         stats.binary_bytes = layout.total_bytes;
-        if (Status s = writeGltfFiles(path, model, layout, &stats.json_bytes, &stats.file_bytes); !s) return s;
+        if (Status s = stageGltfFiles(transaction, path, model, layout, &stats.json_bytes, &stats.file_bytes); !s)
+            return s;
         return stats;
     }
 
@@ -233,10 +218,20 @@ bool isGltfPath(const std::string& path) {
     return detail::hasExtension(path, ".glb") || detail::hasExtension(path, ".gltf");
 }
 
-Result<GltfExportStats> exportGltf(const std::string& path, const HeightSource& source, const GltfExportOptions& options) {
+Result<GltfExportStats> stageGltf(FileTransaction& transaction, const std::string& path, const HeightSource& source,
+                                  const GltfExportOptions& options) {
+    if (!isGltfPath(path)) return Status::error(path + ": the output must end in .glb or .gltf");
     if (Status s = checkOptions(options); !s) return s;
     if (!source) return Status::error("exportGltf: no height source");
-    return Exporter(source, options).run(path);
+    return Exporter(source, options).run(transaction, path);
+}
+
+Result<GltfExportStats> exportGltf(const std::string& path, const HeightSource& source, const GltfExportOptions& options) {
+    FileTransaction transaction;
+    auto stats = stageGltf(transaction, path, source, options);
+    if (!stats) return stats;
+    if (Status s = transaction.commit(); !s) return s;
+    return stats;
 }
 
 }  // namespace terrasynth

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -92,9 +93,13 @@ struct ModelInputs {
 // Fills `model` (nodes, meshes, accessors, bufferViews, material, extensions) and `layout`.
 void buildModel(const ModelInputs& inputs, tinygltf::Model& model, BinaryLayout& layout);
 
-// Serialises `model` (its buffer left empty) with tinygltf and writes GLB, or .gltf + <stem>.bin,
-// streaming `layout`'s blocks; temporaries renamed into place. Reports the bytes written.
-Status writeGltfFiles(const std::string& path, tinygltf::Model& model, const BinaryLayout& layout,
-                      size_t* json_bytes, size_t* file_bytes);
+// Serialises `model` (its buffer left empty) with tinygltf and stages GLB, or <stem>.bin then the
+// .gltf, streaming `layout`'s blocks into the transaction's temporaries. Reports the bytes written.
+Status stageGltfFiles(FileTransaction& transaction, const std::string& path, tinygltf::Model& model,
+                      const BinaryLayout& layout, size_t* json_bytes, size_t* file_bytes);
+
+// Runs body(i) for i in [0, n) on `threads` threads (the caller's among them), handing out indices
+// in increasing order; stops handing out work after the first error and returns it.
+Status parallelFor(int n, int threads, const std::function<Status(int)>& body);
 
 }  // namespace terrasynth::export_detail

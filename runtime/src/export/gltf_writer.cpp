@@ -1,13 +1,13 @@
 // Writing the model: tinygltf serialises the JSON (buffer left empty), the binary blocks are streamed
 // straight to disk so a 1 GB export is never copied whole in memory.
 #include <tiny_gltf.h>
-#include <unistd.h>
 
 #include <cstdio>
-#include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/json_reader.h"
 #include "core/paths.h"
 #include "export/export_internal.h"
 
@@ -15,40 +15,38 @@ namespace terrasynth::export_detail {
 
 namespace {
 
-// A file written under a temporary name and renamed into place on commit().
-class AtomicFile {
+// A temporary file being streamed; remembers the first failed write so one check at the end covers
+// all of them (a full disk fails late, inside a buffered write).
+class StreamedFile {
 public:
-    explicit AtomicFile(std::string path)
-        : path_(std::move(path)), temp_(path_ + ".tmp." + std::to_string(::getpid())) {
-        out_.open(temp_, std::ios::binary | std::ios::trunc);
+    explicit StreamedFile(const std::string& temp) : file_(std::fopen(temp.c_str(), "wb")) {}
+    ~StreamedFile() {
+        if (file_) std::fclose(file_);
     }
-    ~AtomicFile() {
-        if (!committed_) {
-            out_.close();
-            std::remove(temp_.c_str());
-        }
+    StreamedFile(const StreamedFile&) = delete;
+    StreamedFile& operator=(const StreamedFile&) = delete;
+    bool isOpen() const { return file_ != nullptr; }
+    void write(const void* data, size_t size) {
+        if (ok_ && size > 0) ok_ = std::fwrite(data, 1, size, file_) == size;
     }
-    bool isOpen() const { return out_.is_open(); }
-    void write(const void* data, size_t size) { out_.write(static_cast<const char*>(data), static_cast<std::streamsize>(size)); }
     void zeros(size_t n) {
         static const char kZeros[4] = {0, 0, 0, 0};
         write(kZeros, n);
     }
-    Status commit() {
-        out_.close();
-        if (out_.fail()) return Status::error(path_ + ": write failed (disk full?)");
-        if (std::rename(temp_.c_str(), path_.c_str()) != 0) return Status::error(path_ + ": cannot rename the temporary file into place");
-        committed_ = true;
+    // Closes the file; the status names `path`, the file it will become.
+    Status finish(const std::string& path) {
+        const bool closed = std::fclose(file_) == 0;
+        file_ = nullptr;
+        if (!ok_ || !closed) return Status::error(path + ": write failed (disk full?)");
         return Status::ok();
     }
 
 private:
-    std::string path_, temp_;
-    std::ofstream out_;
-    bool committed_ = false;
+    std::FILE* file_;
+    bool ok_ = true;
 };
 
-void writeBlocks(AtomicFile& file, const BinaryLayout& layout) {
+void writeBlocks(StreamedFile& file, const BinaryLayout& layout) {
     size_t at = 0;
     for (const BinaryLayout::Block& block : layout.blocks) {
         file.zeros(block.offset - at);
@@ -58,15 +56,26 @@ void writeBlocks(AtomicFile& file, const BinaryLayout& layout) {
     file.zeros(layout.total_bytes - at);
 }
 
-void writeLe32(AtomicFile& file, uint32_t v) {
+void writeLe32(StreamedFile& file, uint32_t v) {
     const uint8_t bytes[4] = {uint8_t(v), uint8_t(v >> 8), uint8_t(v >> 16), uint8_t(v >> 24)};
     file.write(bytes, 4);
 }
 
+// Stages `path` written by `body` into a streamed temporary.
+Status stageStreamed(FileTransaction& transaction, const std::string& path,
+                     const std::function<void(StreamedFile&)>& body) {
+    return transaction.stageWith(path, [&](const std::string& temp) {
+        StreamedFile file(temp);
+        if (!file.isOpen()) return Status::error(path + ": cannot create the file");
+        body(file);
+        return file.finish(path);
+    });
+}
+
 }  // namespace
 
-Status writeGltfFiles(const std::string& path, tinygltf::Model& model, const BinaryLayout& layout,
-                      size_t* json_bytes, size_t* file_bytes) {
+Status stageGltfFiles(FileTransaction& transaction, const std::string& path, tinygltf::Model& model,
+                      const BinaryLayout& layout, size_t* json_bytes, size_t* file_bytes) {
     if (!isGltfPath(path)) return Status::error(path + ": the output must end in .glb or .gltf");
     const bool binary = detail::hasExtension(path, ".glb");
     tinygltf::TinyGLTF writer;
@@ -84,39 +93,34 @@ Status writeGltfFiles(const std::string& path, tinygltf::Model& model, const Bin
         buffer["uri"] = detail::baseName(bin_path);
     }
     json["buffers"] = nlohmann::json::array({buffer});
-    std::string text = json.dump();
+    std::string text = detail::dumpJson(json);
     *json_bytes = text.size();
 
     if (binary) {
         text.append((4 - text.size() % 4) % 4, ' ');  // the JSON chunk is padded with spaces
-        AtomicFile file(path);
-        if (!file.isOpen()) return Status::error(path + ": cannot create the file");
         const size_t total = 12 + 8 + text.size() + (layout.total_bytes ? 8 + padded_bin : 0);
         if (total > 0xFFFFFFFFull) return Status::error(path + ": over 4 GiB, the GLB limit; export a smaller region or use quantization");
-        writeLe32(file, 0x46546C67u);  // "glTF"
-        writeLe32(file, 2);
-        writeLe32(file, static_cast<uint32_t>(total));
-        writeLe32(file, static_cast<uint32_t>(text.size()));
-        writeLe32(file, 0x4E4F534Au);  // "JSON"
-        file.write(text.data(), text.size());
-        if (layout.total_bytes) {
-            writeLe32(file, static_cast<uint32_t>(padded_bin));
-            writeLe32(file, 0x004E4942u);  // "BIN\0"
-            writeBlocks(file, layout);
-            file.zeros(padded_bin - layout.total_bytes);
-        }
         *file_bytes = total;
-        return file.commit();
+        return stageStreamed(transaction, path, [&](StreamedFile& file) {
+            writeLe32(file, 0x46546C67u);  // "glTF"
+            writeLe32(file, 2);
+            writeLe32(file, static_cast<uint32_t>(total));
+            writeLe32(file, static_cast<uint32_t>(text.size()));
+            writeLe32(file, 0x4E4F534Au);  // "JSON"
+            file.write(text.data(), text.size());
+            if (layout.total_bytes) {
+                writeLe32(file, static_cast<uint32_t>(padded_bin));
+                writeLe32(file, 0x004E4942u);  // "BIN\0"
+                writeBlocks(file, layout);
+                file.zeros(padded_bin - layout.total_bytes);
+            }
+        });
     }
-    AtomicFile bin(bin_path);
-    if (!bin.isOpen()) return Status::error(bin_path + ": cannot create the file");
-    writeBlocks(bin, layout);
-    if (Status s = bin.commit(); !s) return s;
-    AtomicFile file(path);
-    if (!file.isOpen()) return Status::error(path + ": cannot create the file");
-    file.write(text.data(), text.size());
+    // The .gltf names the .bin, so it is staged last.
+    if (Status s = stageStreamed(transaction, bin_path, [&](StreamedFile& file) { writeBlocks(file, layout); }); !s)
+        return s;
     *file_bytes = text.size() + layout.total_bytes;
-    return file.commit();
+    return transaction.stage(path, text);
 }
 
 }  // namespace terrasynth::export_detail

@@ -11,16 +11,30 @@ namespace terrasynth {
 
 using detail::lowerExtension;
 
-Status exportHeightmap(const std::string& path, const Heightfield& field, double origin_x_m, double origin_y_m) {
+Status checkHeightmapExportPath(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == ".tif" || ext == ".tiff") return Status::ok();
+    if (ext == ".exr" && !openExrAvailable())
+        return Status::error(path + ": this build has no OpenEXR; use .png, .f32 or .tif");
+    return checkHeightfieldPath(path);
+}
+
+Status stageHeightmapExport(FileTransaction& transaction, const std::string& path, const Heightfield& field,
+                            double origin_x_m, double origin_y_m) {
+    if (Status s = checkHeightmapExportPath(path); !s) return s;
     if (Status s = validateHeightfield(field); !s) return s.withContext(path);
     const std::string ext = lowerExtension(path);
     if (ext == ".tif" || ext == ".tiff") {
         if (field.size() * 4 > 0xF0000000ull) return Status::error(path + ": too large for a classic TIFF");
-        return writeFileAtomically(path, export_detail::encodeGeoTiff(field, origin_x_m, origin_y_m));
+        return transaction.stage(path, export_detail::encodeGeoTiff(field, origin_x_m, origin_y_m));
     }
-    if (ext == ".exr" && !openExrAvailable())
-        return Status::error(path + ": this build has no OpenEXR; use .png, .f32 or .tif");
-    return writeHeightfield(path, field);
+    return stageHeightfield(transaction, path, field);
+}
+
+Status exportHeightmap(const std::string& path, const Heightfield& field, double origin_x_m, double origin_y_m) {
+    FileTransaction transaction;
+    if (Status s = stageHeightmapExport(transaction, path, field, origin_x_m, origin_y_m); !s) return s;
+    return transaction.commit();
 }
 
 }  // namespace terrasynth

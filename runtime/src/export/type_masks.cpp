@@ -37,8 +37,17 @@ std::vector<float> boxBlur(const std::vector<float>& in, int w, int h, int r) {
 
 }  // namespace
 
-Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int width, int height,
-                                                const std::vector<uint8_t>& types,
+std::string typeMaskPath(const std::string& prefix, const std::vector<std::string>& type_names, size_t index) {
+    const std::string path = prefix + sanitise(type_names[index], index) + ".png";
+    // Two names that sanitise alike ("a b", "a_b") must not write one file twice.
+    for (size_t earlier = 0; earlier < index; ++earlier)
+        if (prefix + sanitise(type_names[earlier], earlier) + ".png" == path)
+            return prefix + sanitise(type_names[index], index) + "_" + std::to_string(index) + ".png";
+    return path;
+}
+
+Result<std::vector<std::string>> stageTypeMasks(FileTransaction& transaction, const std::string& prefix, int width,
+                                                int height, const std::vector<uint8_t>& types,
                                                 const std::vector<std::string>& type_names,
                                                 const TypeMaskOptions& options) {
     if (width < 1 || height < 1 || types.size() != size_t(width) * height)
@@ -78,10 +87,21 @@ Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int w
     }
     std::vector<std::string> paths;
     for (size_t t = 0; t < count; ++t) {
-        const std::string path = prefix + sanitise(type_names[t], t) + ".png";
-        if (Status s = writePng8(path, width, height, 1, masks[t]); !s) return s;
+        const std::string path = typeMaskPath(prefix, type_names, t);
+        if (Status s = stagePng8(transaction, path, width, height, 1, masks[t]); !s) return s;
         paths.push_back(path);
     }
+    return paths;
+}
+
+Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int width, int height,
+                                                const std::vector<uint8_t>& types,
+                                                const std::vector<std::string>& type_names,
+                                                const TypeMaskOptions& options) {
+    FileTransaction transaction;
+    auto paths = stageTypeMasks(transaction, prefix, width, height, types, type_names, options);
+    if (!paths) return paths;
+    if (Status s = transaction.commit(); !s) return s;
     return paths;
 }
 

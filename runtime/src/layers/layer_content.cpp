@@ -5,6 +5,7 @@
 
 #include "core/paths.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth::layers {
 namespace {
@@ -36,6 +37,16 @@ bool readsBelow(const ToolParams& tool) {
            std::holds_alternative<GroupParams>(tool);
 }
 
+// A ridge ridgeRelief can take, at a cost bounded by limits::kMaxRidgeCost on this grid.
+static Status checkRidge(const RidgeParams& ridge, int w, int h) {
+    if (Status s = validateRidge(ridge); !s) return s;
+    const uint64_t cost = ridgeReliefCost(ridge, w, h);
+    if (cost > limits::kMaxRidgeCost)
+        return Status::error("points: the ridge would visit " + std::to_string(cost) + " pixels of the grid, at most " +
+                             std::to_string(limits::kMaxRidgeCost) + " (fewer points or a narrower width_px)");
+    return Status::ok();
+}
+
 Result<Heightfield> toolRelief(const ToolParams& tool, const Heightfield& grid) {
     const int w = grid.width, h = grid.height;
     const double mpp = grid.meters_per_pixel_x;
@@ -45,7 +56,7 @@ Result<Heightfield> toolRelief(const ToolParams& tool, const Heightfield& grid) 
         if (!r) return r.status();
         relief = std::move(*r);
     } else if (auto* ridge = std::get_if<RidgeParams>(&tool)) {
-        if (Status s = validateRidge(*ridge); !s) return s;
+        if (Status s = checkRidge(*ridge, w, h); !s) return s;
         relief = ridgeRelief(*ridge, w, h, mpp);
     } else if (auto* noise = std::get_if<NoiseParams>(&tool)) {
         if (Status s = validateFractal(noise->fractal); !s) return s;
@@ -58,6 +69,8 @@ Result<Heightfield> toolRelief(const ToolParams& tool, const Heightfield& grid) 
         auto ridges = strokesToRidges(persp->canvas, persp->strokes);
         if (!ridges) return ridges.status();
         relief = Heightfield(w, h, mpp);
+        for (size_t k = 0; k < ridges->size(); ++k)
+            if (Status s = checkRidge((*ridges)[k], w, h); !s) return s.withContext("strokes[" + std::to_string(k) + "]");
         for (const RidgeParams& r : *ridges) {
             const Heightfield one = ridgeRelief(r, w, h, mpp);
             for (size_t i = 0; i < one.heights.size(); ++i)

@@ -3,6 +3,7 @@
 #include "core/json_reader.h"
 #include "core/paths.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 #include <cmath>
 #include <functional>
@@ -167,11 +168,12 @@ ToolParams readHoleFill(Reader& r) {
         if (!c->is_array() || c->empty()) r.fail("choices", "must be a non-empty array of picks 0..2");
         else
             for (const json& e : *c) {
-                if (!e.is_number_integer() || e.get<int>() < 0 || e.get<int>() > 2) {
+                // Read as 64 bits: 2^32 + 1 must not wrap into a valid pick.
+                if (!e.is_number_integer() || e.get<int64_t>() < 0 || e.get<int64_t>() > 2) {
                     r.fail("choices", "each pick must be 0, 1 or 2");
                     break;
                 }
-                p.choices.push_back(e.get<int>());
+                p.choices.push_back(static_cast<int>(e.get<int64_t>()));
             }
     }
     return p;
@@ -380,7 +382,8 @@ Result<LayerStack> layers::parseLayerStackJson(const json& layers, const std::st
     if (layers.is_null()) return stack;
     if (!layers.is_array()) return Status::error("layers: must be an array");
     size_t first = 0;
-    if (!layers.empty() && layers[0].is_object() && layers[0].value("type", "") == "base") {
+    // Compared as JSON: value("type", "") would throw on a non-string type.
+    if (!layers.empty() && layers[0].is_object() && layers[0].contains("type") && layers[0]["type"] == "base") {
         first = 1;
         layers::Reader r(layers[0], "layers[0]");
         r.use("type");
@@ -420,7 +423,29 @@ Result<LayerStack> layers::parseLayerStackJson(const json& layers, const std::st
         if (!layer) return layer.status();
         stack.layers.push_back(std::move(*layer));
     }
+    if (Status s = layers::checkStackSize(stack.layers); !s) return s;
     return stack;
+}
+
+// Evaluating a group recombines everything below it, so the cost grows with the number of layers
+// and the depth of nesting: both are bounded (limits.h).
+Status layers::checkStackSize(const std::vector<EditLayer>& layers) {
+    size_t count = 0;
+    std::function<Status(const std::vector<EditLayer>&, int, const std::string&)> visit =
+        [&](const std::vector<EditLayer>& list, int depth, const std::string& where) -> Status {
+        for (size_t i = 0; i < list.size(); ++i) {
+            if (++count > static_cast<size_t>(limits::kMaxLayers))
+                return Status::error("layers: more than " + std::to_string(limits::kMaxLayers) + " layers (groups' included)");
+            const auto* group = std::get_if<GroupParams>(&list[i].tool);
+            if (!group) continue;
+            const std::string inner = where + "[" + std::to_string(i) + "].layers";
+            if (depth + 1 > limits::kMaxGroupDepth)
+                return Status::error(inner + ": groups nest more than " + std::to_string(limits::kMaxGroupDepth) + " deep");
+            if (Status s = visit(group->children, depth + 1, inner); !s) return s;
+        }
+        return Status::ok();
+    };
+    return visit(layers, 0, "layers");
 }
 
 json layers::layerStackJson(const LayerStack& stack) {
@@ -431,18 +456,19 @@ json layers::layerStackJson(const LayerStack& stack) {
 }
 
 Result<LayerStack> parseLayerStack(const std::string& layers_json, const std::string& base_dir) {
-    const json layers = json::parse(layers_json, nullptr, /*allow_exceptions=*/false);
-    if (layers.is_discarded()) return Status::error("layers: malformed JSON");
-    return layers::parseLayerStackJson(layers, base_dir);
+    auto layers = detail::parseJson(layers_json, "layers");
+    if (!layers) return layers.status();
+    return layers::parseLayerStackJson(*layers, base_dir);
 }
 
-std::string layerStackToJson(const LayerStack& stack) { return layers::layerStackJson(stack).dump(); }
+std::string layerStackToJson(const LayerStack& stack) { return detail::dumpJson(layers::layerStackJson(stack)); }
 
 Result<LayerStack> readLayerStack(const std::string& path) {
-    auto text = readFileBytes(path);
+    auto text = readFileBytes(path, limits::kMaxJsonBytes);
     if (!text) return text.status();
-    const json doc = json::parse(text.value(), nullptr, /*allow_exceptions=*/false);
-    if (doc.is_discarded()) return Status::error(path + ": malformed JSON");
+    auto parsed = detail::parseJson(text.value(), path);
+    if (!parsed) return parsed.status();
+    const json& doc = *parsed;
     if (!doc.is_array() && !doc.is_object()) return Status::error(path + ": expected a project object or a layers array");
     const json layers = doc.is_array() ? doc : doc.value("layers", json::array());
     auto stack = layers::parseLayerStackJson(layers, detail::folderOf(path));

@@ -15,6 +15,9 @@ Result<EditLayer> parseEditLayer(const nlohmann::json& j, const std::string& whe
 
 // parseLayerStack / layerStackToJson (layers.h) on parsed JSON.
 Result<LayerStack> parseLayerStackJson(const nlohmann::json& layers, const std::string& base_dir);
+// At most limits::kMaxLayers layers (children of groups included), groups nested at most
+// limits::kMaxGroupDepth deep.
+Status checkStackSize(const std::vector<EditLayer>& layers);
 nlohmann::json layerStackJson(const LayerStack& stack);
 
 // FNV-1a over bytes: a stable fingerprint for cache keys.

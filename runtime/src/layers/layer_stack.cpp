@@ -4,6 +4,8 @@
 #include <sstream>
 
 #include "layers/evaluator.h"
+#include "layers/layer_json.h"
+#include "terrasynth/limits.h"
 #include "terrasynth/layers.h"
 
 namespace terrasynth {
@@ -29,6 +31,11 @@ const char* toolTypeName(const ToolParams& tool) {
 Result<Heightfield> applyLayerStack(const LayerStack& stack, const Heightfield& base) {
     if (base.empty() || base.heights.size() != static_cast<size_t>(base.width) * base.height)
         return Status::error("layers: the base terrain is empty");
+    if (base.width > limits::kMaxImageSide || base.height > limits::kMaxImageSide ||
+        base.heights.size() > limits::kMaxImagePixels)
+        return Status::error("layers: the base terrain is " + std::to_string(base.width) + "x" + std::to_string(base.height) +
+                             ", more than a layer stack composes (" + std::to_string(limits::kMaxImagePixels) + " pixels)");
+    if (Status s = layers::checkStackSize(stack.layers); !s) return s;
     layers::StackEvaluator evaluator(base);
     return evaluator.evaluate(stack);
 }

@@ -7,6 +7,8 @@
 #include <thread>
 #include <vector>
 
+#include "terrasynth/guard.h"
+
 namespace terrasynth::layers {
 
 // Calls fn(begin, end) over disjoint blocks of [0, n). Runs inline when the work is small
@@ -32,9 +34,11 @@ void parallelFor(int n, long cost_per_item, Fn&& fn) {
     };
     std::vector<std::thread> threads;
     threads.reserve(workers - 1);
-    for (int t = 1; t < workers; ++t) threads.emplace_back(run);
-    run();
+    FirstException first;  // rethrown here, never std::terminate in a worker
+    for (int t = 1; t < workers; ++t) threads.emplace_back([&] { first.run(run); });
+    first.run(run);
     for (auto& t : threads) t.join();
+    first.rethrow();
 }
 
 }  // namespace terrasynth::layers

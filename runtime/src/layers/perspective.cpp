@@ -149,7 +149,7 @@ Result<std::vector<RidgeParams>> strokesToRidges(const PerspectiveCanvas& canvas
         const SilhouetteStroke& st = strokes[si];
         const std::string where = "strokes[" + std::to_string(si) + "]";
         if (st.points.size() < 2) return Status::error(where + ".points: a stroke needs at least 2 points");
-        if (!(st.width_px > 0.0)) return Status::error(where + ".width_px: must be > 0");
+        if (!(st.width_px > 0.0 && st.width_px <= 1e4)) return Status::error(where + ".width_px: must be in (0, 10000]");
         double base = -1e300;
         for (const Point2& p : st.points) {
             if (!finitePoint(p)) return Status::error(where + ".points: must be finite");

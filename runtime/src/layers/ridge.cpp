@@ -6,6 +6,7 @@
 
 #include "layers/parallel.h"
 #include "terrasynth/layers_tools.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth {
 namespace {
@@ -27,7 +28,9 @@ double crestAt(const RidgeParams& p, double s, double total) {
 }  // namespace
 
 Status validateRidge(const RidgeParams& p) {
-    if (p.points.size() < 2) return Status::error("points: a ridge needs at least 2 points");
+    if (p.points.size() < 2 || p.points.size() > static_cast<size_t>(limits::kMaxRidgePoints))
+        return Status::error("points: a ridge needs 2.." + std::to_string(limits::kMaxRidgePoints) + " points");
+    if (p.profile_m.size() > 100000) return Status::error("profile_m: at most 100000 heights");
     for (size_t i = 0; i < p.points.size(); ++i)
         if (!std::isfinite(p.points[i][0]) || !std::isfinite(p.points[i][1]) || std::fabs(p.points[i][0]) > 1e6 ||
             std::fabs(p.points[i][1]) > 1e6)
@@ -40,9 +43,10 @@ Status validateRidge(const RidgeParams& p) {
     return Status::ok();
 }
 
-Heightfield ridgeRelief(const RidgeParams& p, int width, int height, double meters_per_pixel) {
-    TERRASYNTH_REQUIRE(validateRidge(p).isOk(), "invalid ridge");
-    Heightfield out(width, height, meters_per_pixel);
+namespace {
+
+// The segments with their pixel bounds (reach clipped to the grid).
+std::vector<Segment> ridgeSegments(const RidgeParams& p, int width, int height, double* total_length) {
     // Beyond this distance the cross-section is below 1e-6 of the crest.
     const double reach = p.width_px * std::sqrt(2.0 * std::log(1.0e6));
     std::vector<Segment> segs;
@@ -63,7 +67,27 @@ Heightfield ridgeRelief(const RidgeParams& p, int width, int height, double mete
         g.y1 = std::min(height, static_cast<int>(std::ceil(std::max(g.ay, g.ay + g.dy) + reach)) + 1);
         segs.push_back(g);
     }
-    const double total = s, inv2w2 = 1.0 / (2.0 * p.width_px * p.width_px);
+    *total_length = s;
+    return segs;
+}
+
+}  // namespace
+
+uint64_t ridgeReliefCost(const RidgeParams& p, int width, int height) {
+    double total = 0.0;
+    uint64_t cost = static_cast<uint64_t>(std::max(0, width)) * std::max(0, height);
+    for (const Segment& g : ridgeSegments(p, width, height, &total))
+        cost += static_cast<uint64_t>(std::max(0, g.x1 - g.x0)) * std::max(0, g.y1 - g.y0);
+    return cost;
+}
+
+Heightfield ridgeRelief(const RidgeParams& p, int width, int height, double meters_per_pixel) {
+    TERRASYNTH_REQUIRE(validateRidge(p).isOk(), "invalid ridge");
+    Heightfield out(width, height, meters_per_pixel);
+    const double reach = p.width_px * std::sqrt(2.0 * std::log(1.0e6));
+    double total = 0.0;
+    const std::vector<Segment> segs = ridgeSegments(p, width, height, &total);
+    const double inv2w2 = 1.0 / (2.0 * p.width_px * p.width_px);
     layers::parallelFor(height, 8L * width, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (const Segment& g : segs) {

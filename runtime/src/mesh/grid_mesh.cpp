@@ -168,10 +168,39 @@ private:
             if (!touches_subdivided[k]) apex = p;
             ++k;
         }
-        TERRASYNTH_REQUIRE(apex < n, "a stitched cell needs a corner away from the fine sides");
+        // A cell on two opposite borders (a tile one cell wide, e.g. the last tile of a region that
+        // tile_size does not divide): a corner whose sides have no fine samples after all, else a
+        // vertex at the cell's centre, so no fan triangle lies along a subdivided side.
+        for (size_t p = 0; p < n && apex == n; ++p)
+            if (corner[p] && corner[(p + 1) % n] && corner[(p + n - 1) % n]) apex = p;
+        if (apex == n) {
+            const uint32_t centre = addCentreVertex(gridId(i, j), gridId(i + 1, j), gridId(i, j + 1), gridId(i + 1, j + 1));
+            for (size_t m = 0; m < n; ++m) mesh_.indices.insert(mesh_.indices.end(), {centre, outline[m], outline[(m + 1) % n]});
+            return;
+        }
         for (size_t m = 1; m + 1 < n; ++m)
             mesh_.indices.insert(mesh_.indices.end(),
                                  {outline[apex], outline[(apex + m) % n], outline[(apex + m + 1) % n]});
+    }
+
+    // A vertex at the centre of the cell with these corners: the mean of their positions, normals
+    // and texture coordinates (the bilinear surface there).
+    uint32_t addCentreVertex(uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
+        const uint32_t id = static_cast<uint32_t>(mesh_.vertexCount());
+        const uint32_t corners[4] = {a, b, c, d};
+        float position[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, uv[2] = {0, 0};
+        for (uint32_t v : corners) {
+            for (int k = 0; k < 3; ++k) position[k] += 0.25f * mesh_.positions[3 * v + k];
+            for (int k = 0; k < 3; ++k) normal[k] += mesh_.normals[3 * v + k];
+            for (int k = 0; k < 2; ++k) uv[k] += 0.25f * mesh_.uvs[2 * v + k];
+        }
+        const float length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+        for (float& v : normal) v = length > 0.0f ? v / length : 0.0f;
+        if (length == 0.0f) normal[2] = 1.0f;
+        mesh_.positions.insert(mesh_.positions.end(), position, position + 3);
+        mesh_.normals.insert(mesh_.normals.end(), normal, normal + 3);
+        mesh_.uvs.insert(mesh_.uvs.end(), uv, uv + 2);
+        return id;
     }
 
     const Heightfield& field_;

@@ -7,6 +7,7 @@
 #include "core/json_reader.h"
 #include "core/paths.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 #include "terrasynth/project.h"
 
 namespace terrasynth {
@@ -14,6 +15,12 @@ namespace {
 
 using nlohmann::json;
 using detail::JsonReader;
+
+// A section kept as text, back as JSON (null when it is not JSON).
+json sectionJson(const std::string& text) {
+    auto parsed = detail::parseJson(text, "section");
+    return parsed ? std::move(parsed.value()) : json();
+}
 
 }  // namespace
 
@@ -25,9 +32,20 @@ std::string Project::databaseCachePath() const {
 
 std::string Project::folder() const { return path.empty() ? std::string(".") : detail::folderOf(path); }
 
+Status checkProjectExtent(const Project& p) {
+    if (p.width < 1 || p.height < 1 || p.width > limits::kMaxWindowSide || p.height > limits::kMaxWindowSide)
+        return Status::error("size: each side must be 1.." + std::to_string(limits::kMaxWindowSide));
+    // Compared without negating: -INT64_MIN does not exist.
+    const int64_t limit = limits::kMaxProjectOrigin;
+    if (p.origin_x < -limit || p.origin_x > limit || p.origin_y < -limit || p.origin_y > limit)
+        return Status::error("origin: must be within +-2^28 (" + std::to_string(limit) + ") pixels");
+    return Status::ok();
+}
+
 Result<Project> parseProject(const std::string& text, const std::string& file, const std::string& base_dir) {
-    json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
-    if (j.is_discarded()) return Status::error(file + ": malformed JSON");
+    auto parsed = detail::parseJson(text, file);
+    if (!parsed) return parsed.status();
+    const json& j = *parsed;
     if (!j.is_object()) return Status::error(file + ": expected a JSON object");
     JsonReader r(j, "");
     Project p;
@@ -59,15 +77,19 @@ Result<Project> parseProject(const std::string& text, const std::string& file, c
             r.fail(key, "must be [x, y] whole numbers");
             continue;
         }
-        const int64_t a = (*it)[0].get<int64_t>(), b = (*it)[1].get<int64_t>();
+        // 2^64 - 1 reads as a whole number too: take it as out of range, never wrapped.
+        const bool huge = (*it)[0].is_number_unsigned() && (*it)[0].get<uint64_t>() > uint64_t(INT64_MAX);
+        const bool huge_b = (*it)[1].is_number_unsigned() && (*it)[1].get<uint64_t>() > uint64_t(INT64_MAX);
+        const int64_t a = huge ? INT64_MAX : (*it)[0].get<int64_t>(), b = huge_b ? INT64_MAX : (*it)[1].get<int64_t>();
         if (key[0] == 's') {
-            if (a < 1 || b < 1 || a > 16384 || b > 16384) r.fail("size", "each side must be 1..16384");
+            if (a < 1 || b < 1 || a > limits::kMaxWindowSide || b > limits::kMaxWindowSide) {
+                r.fail("size", "each side must be 1.." + std::to_string(limits::kMaxWindowSide));
+                continue;
+            }
             p.width = static_cast<int>(a), p.height = static_cast<int>(b);
         } else {
-            // Compared without negating: -INT64_MIN does not exist.
-            const int64_t limit = int64_t(1) << 28;
-            if (a < -limit || a > limit || b < -limit || b > limit) r.fail("origin", "must be within +-2^28");
             p.origin_x = a, p.origin_y = b;
+            if (Status s = checkProjectExtent(p); !s) r.failWith(s.message());
         }
     }
     if (const json* synthesis = r.child("synthesis")) {
@@ -83,19 +105,19 @@ Result<Project> parseProject(const std::string& text, const std::string& file, c
     }
     if (const json* c = r.child("constraints")) {
         if (!c->is_object()) r.fail("constraints", "must be an object");
-        else p.constraints_json = c->dump();
+        else p.constraints_json = detail::dumpJson(*c);
     }
     p.edited_heights = detail::resolveRelative(base_dir, r.string("edited_heights", ""));
     if (const json* l = r.child("layers")) {
         if (!l->is_array()) r.fail("layers", "must be an array");
-        else p.layers_json = l->dump();
+        else p.layers_json = detail::dumpJson(*l);
     }
     if (Status s = r.finish(); !s) return s.withContext(file);
     return p;
 }
 
 Result<Project> loadProject(const std::string& path) {
-    auto bytes = readFileBytes(path);
+    auto bytes = readFileBytes(path, limits::kMaxJsonBytes);
     if (!bytes) return bytes.status();
     return parseProject(bytes.value(), path, detail::folderOf(path));
 }
@@ -116,8 +138,8 @@ std::string projectToJson(const Project& p, const std::string& folder) {
           {"coarsest_level", p.synthesis.coarsest_level},
           {"first_constrained_level", p.synthesis.first_constrained_level},
           {"hold_point_heights", p.hold_point_heights}}},
-        {"constraints", json::parse(p.constraints_json, nullptr, false)},
-        {"layers", json::parse(p.layers_json, nullptr, false)},
+        {"constraints", sectionJson(p.constraints_json)},
+        {"layers", sectionJson(p.layers_json)},
     };
     if (!p.exemplars.empty()) {
         json& list = j["exemplars"] = json::array();
@@ -125,7 +147,7 @@ std::string projectToJson(const Project& p, const std::string& folder) {
     }
     if (!p.database.empty()) j["database"] = written(p.database);
     if (!p.edited_heights.empty()) j["edited_heights"] = written(p.edited_heights);
-    return j.dump(2) + "\n";
+    return detail::dumpJson(j, 2) + "\n";
 }
 
 Status saveProject(const Project& project, const std::string& path) {

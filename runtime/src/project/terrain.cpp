@@ -50,6 +50,7 @@ Result<std::shared_ptr<Terrain>> Terrain::open(const std::string& project_path, 
 }
 
 Result<std::shared_ptr<Terrain>> Terrain::fromProject(Project project, const TerrainOptions& options) {
+    if (Status s = checkProjectExtent(project); !s) return s.withContext(project.path);
     if (project.hasLayers()) {
         auto stack = parseLayerStack(project.layers_json, project.folder());
         if (!stack) return stack.status().withContext(project.path);

@@ -18,10 +18,6 @@ double smoothstep(double a) {
 
 void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
                      float sign, std::vector<float>& blend, double localisation_px) {
-    const double kDegree = 3.14159265358979323846 / 180.0;
-    const double rise = std::tan(point.slope_angle_deg * kDegree);
-    const double direction = point.slope_direction_deg * kDegree;  // clockwise from north, rising
-    const double rise_east = rise * std::sin(direction), rise_south = -rise * std::cos(direction);
     const double cell = std::ldexp(1.0, level);
     // s5.1: the area of effect shrinks at finer levels, min(radius, 4 * 2^level) level-0 pixels.
     const double reach = std::min<double>(point.radius_px, localisation_px > 0.0 ? localisation_px : kPointLocalisation * cell);
@@ -30,6 +26,13 @@ void accumulatePoint(const PointConstraint& point, int level, const LevelRegion&
     const int x1 = std::min(region.x + region.width - 1, static_cast<int>(std::ceil((point.x + reach + 0.5) / cell - 0.5)));
     const int y0 = std::max(region.y, static_cast<int>(std::floor((point.y - reach + 0.5) / cell - 0.5)));
     const int y1 = std::min(region.y + region.height - 1, static_cast<int>(std::ceil((point.y + reach + 0.5) / cell - 0.5)));
+    // Most points are far from a small window (point lifting synthesizes many): skip them before
+    // any trigonometry.
+    if (x0 > x1 || y0 > y1) return;
+    const double kDegree = 3.14159265358979323846 / 180.0;
+    const double rise = std::tan(point.slope_angle_deg * kDegree);
+    const double direction = point.slope_direction_deg * kDegree;  // clockwise from north, rising
+    const double rise_east = rise * std::sin(direction), rise_south = -rise * std::cos(direction);
     for (int gy = y0; gy <= y1; ++gy) {
         for (int gx = x0; gx <= x1; ++gx) {
             const double ex = (gx + 0.5) * cell - 0.5 - point.x, ey = (gy + 0.5) * cell - 0.5 - point.y;

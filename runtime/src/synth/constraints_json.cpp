@@ -3,14 +3,17 @@
 // constraintsToJson is the inverse of parseConstraints: painting comes back as masks.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "synth/constraints_json.h"
 
 #include "core/json_reader.h"
 #include "core/paths.h"
+#include "synth/curve_field.h"
 #include "terrasynth/constraints.h"
 #include "terrasynth/database.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth {
 namespace {
@@ -30,13 +33,25 @@ Result<uint8_t> typeByName(const ExemplarDatabase& db, const json& name, const s
     return static_cast<uint8_t>(it - names.begin());
 }
 
+// Coordinates in the JSON are relative to the project's origin; both stay within +-2^28, so every
+// site and course point is inside the +-2^29 grid that synthesis windows address (limits.h).
+constexpr double kCoordinate = limits::kMaxConstraintCoordinate;
+
+// `list` is an array of at most `limit` elements; the error names `path`.
+Status checkArray(const json& list, const std::string& path, size_t limit, const char* what) {
+    if (!list.is_array()) return Status::error(path + ": must be an array");
+    if (list.size() > limit)
+        return Status::error(path + ": " + std::to_string(list.size()) + " " + what + ", at most " + std::to_string(limit));
+    return Status::ok();
+}
+
 Status parsePoints(const json& points, SynthesisConstraints& out, int64_t ox, int64_t oy) {
-    if (!points.is_array()) return Status::error("constraints.points: must be an array");
+    if (Status s = checkArray(points, "constraints.points", limits::kMaxPointConstraints, "points"); !s) return s;
     for (size_t i = 0; i < points.size(); ++i) {
         JsonReader r(points[i], "constraints.points[" + std::to_string(i) + "]");
         PointConstraint c;
-        c.x = ox + r.number("x", -1e8, 1e8, std::nullopt);
-        c.y = oy + r.number("y", -1e8, 1e8, std::nullopt);
+        c.x = ox + r.number("x", -kCoordinate, kCoordinate, std::nullopt);
+        c.y = oy + r.number("y", -kCoordinate, kCoordinate, std::nullopt);
         c.height_m = static_cast<float>(r.number("height_m", -12000, 12000, std::nullopt));
         c.slope_direction_deg = static_cast<float>(r.number("slope_direction_deg", -360, 360, 0.0));
         c.slope_angle_deg = static_cast<float>(r.number("slope_angle_deg", 0, 80, 0.0));
@@ -48,15 +63,21 @@ Status parsePoints(const json& points, SynthesisConstraints& out, int64_t ox, in
 }
 
 // A list of [x, y] points (at least `minimum`), offset by (ox, oy). The error names `path`.
+// A list of `minimum`..`maximum` points [x, y] within +-2^28, offset by (ox, oy). The error names
+// `path` (and the point).
 Result<std::vector<std::pair<double, double>>> readPoints(const json& list, const std::string& path, size_t minimum,
-                                                          double ox = 0.0, double oy = 0.0) {
-    if (!list.is_array() || list.size() < minimum)
-        return Status::error(path + ": must be an array of at least " + std::to_string(minimum) + " points [x, y]");
+                                                          size_t maximum, double ox = 0.0, double oy = 0.0) {
+    if (!list.is_array() || list.size() < minimum || list.size() > maximum)
+        return Status::error(path + ": must be an array of " + std::to_string(minimum) + ".." + std::to_string(maximum) +
+                             " points [x, y]");
     std::vector<std::pair<double, double>> points;
-    for (const json& p : list) {
+    for (size_t i = 0; i < list.size(); ++i) {
+        const json& p = list[i];
         if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number() ||
             !std::isfinite(p[0].get<double>()) || !std::isfinite(p[1].get<double>()))
-            return Status::error(path + ": each point must be [x, y]");
+            return Status::error(path + "[" + std::to_string(i) + "]: must be [x, y]");
+        if (std::fabs(p[0].get<double>()) > kCoordinate || std::fabs(p[1].get<double>()) > kCoordinate)
+            return Status::error(path + "[" + std::to_string(i) + "]: beyond +-2^28 pixels of the project origin");
         points.emplace_back(ox + p[0].get<double>(), oy + p[1].get<double>());
     }
     return points;
@@ -67,29 +88,35 @@ Status paintStrokeJson(JsonReader& r, uint8_t value, TypePaint& paint) {
     const double radius = r.number("radius_px", 0.5, 1e5, 16.0);
     const json* points = r.child("points");
     if (Status s = r.finish(); !s) return s;
-    auto line = readPoints(points ? *points : json(), r.field("points"), 1, static_cast<double>(paint.x),
-                           static_cast<double>(paint.y));
+    auto line = readPoints(points ? *points : json(), r.field("points"), 1, limits::kMaxStrokePoints,
+                           static_cast<double>(paint.x), static_cast<double>(paint.y));
     if (!line) return line.status();
+    const uint64_t cost = strokePaintCost(paint, line.value(), radius);
+    if (cost > limits::kMaxStrokePaintCost)
+        return Status::error(r.field("points") + ": painting this stroke would visit " + std::to_string(cost) +
+                             " pixel rows, at most " + std::to_string(limits::kMaxStrokePaintCost) +
+                             "; use fewer or shorter segments or a larger radius");
     paintStroke(paint, line.value(), radius, value);
     return Status::ok();
 }
 
 Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, int64_t oy) {
-    if (!curves.is_array()) return Status::error("constraints.curves: must be an array");
+    if (Status s = checkArray(curves, "constraints.curves", limits::kMaxCurves, "curves"); !s) return s;
     for (size_t i = 0; i < curves.size(); ++i) {
         JsonReader r(curves[i], "constraints.curves[" + std::to_string(i) + "]");
         if (!r.ok()) return r.status();
         CurveConstraint curve;
         const json* course = r.child("course");
-        auto points = readPoints(course ? *course : json(), r.field("course"), 2, static_cast<double>(ox),
-                                 static_cast<double>(oy));
+        auto points = readPoints(course ? *course : json(), r.field("course"), 2, limits::kMaxCoursePoints,
+                                 static_cast<double>(ox), static_cast<double>(oy));
         if (!points) return points.status();
         curve.course = std::move(points.value());
         curve.spline = r.boolean("spline", true);
         const json* widgets = r.child("widgets");
         if (Status s = r.finish(); !s) return s;
-        if (!widgets || !widgets->is_array() || widgets->empty())
-            return Status::error(r.field("widgets") + ": must be a non-empty array");
+        if (!widgets || !widgets->is_array() || widgets->empty() || widgets->size() > size_t(limits::kMaxCurveWidgets))
+            return Status::error(r.field("widgets") + ": must be an array of 1.." +
+                                 std::to_string(limits::kMaxCurveWidgets) + " widgets");
         for (size_t w = 0; w < widgets->size(); ++w) {
             JsonReader wr((*widgets)[w], r.field("widgets[" + std::to_string(w) + "]"));
             CurveWidget widget;
@@ -106,7 +133,8 @@ Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, in
         }
         out.curves.push_back(std::move(curve));
     }
-    return Status::ok();
+    // Together the courses are bounded in length and in crossings (cost limits, limits.h).
+    return synth::checkCurveLimits(out.curves, "constraints.curves");
 }
 
 // An 8-bit gray mask of the project's size, `field` naming it in errors.
@@ -150,7 +178,7 @@ Status parseTypes(const json& types, const synth::MaskReader& masks, const Exemp
         for (size_t i = 0; i < paint.types.size(); ++i) paint.types[i] = lookup[image->samples[i]];
     }
     if (strokes) {
-        if (!strokes->is_array()) return Status::error("constraints.types.strokes: must be an array");
+        if (Status s = checkArray(*strokes, "constraints.types.strokes", limits::kMaxStrokes, "strokes"); !s) return s;
         for (size_t i = 0; i < strokes->size(); ++i) {
             JsonReader sr((*strokes)[i], "constraints.types.strokes[" + std::to_string(i) + "]");
             if (!sr.ok()) return sr.status();
@@ -182,7 +210,7 @@ Status parseFreeze(const json& freeze, const synth::MaskReader& masks, Synthesis
         for (size_t i = 0; i < mask.types.size(); ++i) mask.types[i] = image->samples[i] ? 1 : 0;
     }
     if (strokes) {
-        if (!strokes->is_array()) return Status::error("constraints.freeze.strokes: must be an array");
+        if (Status s = checkArray(*strokes, "constraints.freeze.strokes", limits::kMaxStrokes, "strokes"); !s) return s;
         for (size_t i = 0; i < strokes->size(); ++i) {
             JsonReader sr((*strokes)[i], "constraints.freeze.strokes[" + std::to_string(i) + "]");
             if (!sr.ok()) return sr.status();
@@ -193,7 +221,7 @@ Status parseFreeze(const json& freeze, const synth::MaskReader& masks, Synthesis
 }
 
 Status parsePastes(const json& pastes, const ExemplarDatabase& db, SynthesisConstraints& out, int64_t ox, int64_t oy) {
-    if (!pastes.is_array()) return Status::error("constraints.pastes: must be an array");
+    if (Status s = checkArray(pastes, "constraints.pastes", limits::kMaxPastes, "pastes"); !s) return s;
     for (size_t i = 0; i < pastes.size(); ++i) {
         JsonReader r(pastes[i], "constraints.pastes[" + std::to_string(i) + "]");
         if (!r.ok()) return r.status();
@@ -208,10 +236,12 @@ Status parsePastes(const json& pastes, const ExemplarDatabase& db, SynthesisCons
         const bool from_terrain = paste.exemplar < 0;
         const json* source = r.child("source");
         const std::vector<double> target = r.numbers("target", 2, 2);
+        for (double v : target)
+            if (std::fabs(v) > kCoordinate) r.fail("target", "beyond +-2^28 pixels of the project origin");
         paste.height_offset_m = static_cast<float>(r.number("height_offset_m", -12000, 12000, 0.0));
         if (Status s = r.finish(); !s) return s;
-        auto points = readPoints(source ? *source : json(), r.field("source"), 3, from_terrain ? static_cast<double>(ox) : 0.0,
-                                 from_terrain ? static_cast<double>(oy) : 0.0);
+        auto points = readPoints(source ? *source : json(), r.field("source"), 3, limits::kMaxPastePolygonPoints,
+                                 from_terrain ? static_cast<double>(ox) : 0.0, from_terrain ? static_cast<double>(oy) : 0.0);
         if (!points) return points.status();
         paste.source = std::move(points.value());
         paste.dx = ox + target[0] - paste.source[0].first;
@@ -242,27 +272,113 @@ std::vector<uint8_t> synth::paintOnWindow(const TypePaint& paint, const PixelWin
     return out;
 }
 
+namespace {
+
+// The dabs of a stroke: a round brush stamped along each segment at most max(0.5, r/2) pixels apart.
+// Only the dabs within r of the paint's rectangle are visited (the others paint nothing), found by
+// clipping each segment to the rectangle grown by r, so a stroke far outside it, or crossing it
+// from 1e9 pixels away, costs what its part over the rectangle costs.
+struct StrokeDabs {
+    const TypePaint& paint;
+    const std::vector<std::pair<double, double>>& line;
+    double r;
+
+    // Calls dab(x, y) (global pixels) for every dab that may touch the paint, in painting order;
+    // returns how many there are. With `dab` null only counts, in O(segments).
+    uint64_t visit(const std::function<void(double, double)>* dab) const {
+        const double lo_x = static_cast<double>(paint.x) - r - 2.0, hi_x = static_cast<double>(paint.x) + paint.width + r + 2.0;
+        const double lo_y = static_cast<double>(paint.y) - r - 2.0, hi_y = static_cast<double>(paint.y) + paint.height + r + 2.0;
+        auto near = [&](double x, double y) { return x >= lo_x && x <= hi_x && y >= lo_y && y <= hi_y; };
+        uint64_t count = 0;
+        for (size_t i = 0; i < line.size(); ++i) {
+            const double ax = line[i == 0 ? 0 : i - 1].first, ay = line[i == 0 ? 0 : i - 1].second;
+            if (i == 0) {
+                if (near(ax, ay)) ++count, dab ? (*dab)(ax, ay) : void();
+                continue;
+            }
+            const double dx = line[i].first - ax, dy = line[i].second - ay;
+            const int64_t steps = std::max<int64_t>(1, static_cast<int64_t>(std::ceil(std::hypot(dx, dy) / std::max(0.5, r * 0.5))));
+            // Liang-Barsky: the parameter range of the segment inside the grown rectangle.
+            double t0 = 0.0, t1 = 1.0;
+            auto clip = [&](double p, double q) {  // keep t where p * t <= q
+                if (p == 0.0) return q >= 0.0;
+                const double t = q / p;
+                if (p < 0.0) t0 = std::max(t0, t);
+                else t1 = std::min(t1, t);
+                return t0 <= t1;
+            };
+            if (!(clip(-dx, ax - lo_x) && clip(dx, hi_x - ax) && clip(-dy, ay - lo_y) && clip(dy, hi_y - ay))) continue;
+            const int64_t first = std::max<int64_t>(1, static_cast<int64_t>(std::floor(t0 * steps)) - 1);
+            const int64_t last = std::min<int64_t>(steps, static_cast<int64_t>(std::ceil(t1 * steps)) + 1);
+            if (!dab) {
+                count += static_cast<uint64_t>(std::max<int64_t>(0, last - first + 1));
+                continue;
+            }
+            for (int64_t k = first; k <= last; ++k) {
+                // The same arithmetic as stamping every step from the segment's start.
+                const double x = ax + dx * static_cast<double>(k) / static_cast<double>(steps);
+                const double y = ay + dy * static_cast<double>(k) / static_cast<double>(steps);
+                if (near(x, y)) ++count, (*dab)(x, y);
+            }
+        }
+        return count;
+    }
+};
+
+// Pixels (x, y) of the paint with (x - cx)^2 + (y - cy)^2 <= r^2 on row y: an interval around cx,
+// estimated with a square root and settled with that exact test.
+bool rowSpan(int y, double cx, double cy, double r, int width, int* from, int* to) {
+    auto in = [&](int x) { return (x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r; };
+    const double half = std::sqrt(std::max(0.0, r * r - (y - cy) * (y - cy)));
+    const int x0 = static_cast<int>(std::max(0.0, std::floor(cx - r)));
+    const int x1 = static_cast<int>(std::min(width - 1.0, std::ceil(cx + r)));
+    if (x0 > x1) return false;
+    int a = static_cast<int>(std::clamp(std::ceil(cx - half), double(x0), double(x1)));
+    int b = static_cast<int>(std::clamp(std::floor(cx + half), double(x0), double(x1)));
+    while (a > x0 && in(a - 1)) --a;
+    while (a <= x1 && !in(a)) ++a;
+    while (b < x1 && in(b + 1)) ++b;
+    while (b >= x0 && !in(b)) --b;
+    if (a > b) return false;
+    *from = a, *to = b;
+    return true;
+}
+
+}  // namespace
+
+uint64_t strokePaintCost(const TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius_px) {
+    if (paint.width <= 0 || paint.height <= 0) return 0;
+    const uint64_t dabs = StrokeDabs{paint, line, radius_px}.visit(nullptr);
+    const uint64_t rows = static_cast<uint64_t>(std::min(2.0 * radius_px + 3.0, static_cast<double>(paint.height)));
+    return dabs * rows + static_cast<uint64_t>(paint.width) * paint.height;
+}
+
 void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius_px, uint8_t value) {
+    if (paint.width <= 0 || paint.height <= 0 || !(radius_px > 0.0)) return;
     const double r = radius_px;
-    auto dab = [&](double gx, double gy) {
+    // Every dab gives one span per row it covers; the stroke paints the union of its dabs with one
+    // value, so the spans of each row are merged and filled once.
+    std::vector<std::vector<std::pair<int, int>>> rows(static_cast<size_t>(paint.height));
+    const std::function<void(double, double)> dab = [&](double gx, double gy) {
         const double cx = gx - static_cast<double>(paint.x), cy = gy - static_cast<double>(paint.y);
         const int y0 = static_cast<int>(std::max(0.0, std::floor(cy - r)));
         const int y1 = static_cast<int>(std::min(paint.height - 1.0, std::ceil(cy + r)));
-        const int x0 = static_cast<int>(std::max(0.0, std::floor(cx - r)));
-        const int x1 = static_cast<int>(std::min(paint.width - 1.0, std::ceil(cx + r)));
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x)
-                if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r)
-                    paint.types[static_cast<size_t>(y) * paint.width + x] = value;
-    };
-    for (size_t i = 0; i < line.size(); ++i) {
-        if (i == 0) {
-            dab(line[0].first, line[0].second);
-            continue;
+        for (int y = y0; y <= y1; ++y) {
+            int from = 0, to = 0;
+            if (rowSpan(y, cx, cy, r, paint.width, &from, &to)) rows[static_cast<size_t>(y)].push_back({from, to});
         }
-        const double dx = line[i].first - line[i - 1].first, dy = line[i].second - line[i - 1].second;
-        const int steps = std::max(1, static_cast<int>(std::ceil(std::hypot(dx, dy) / std::max(0.5, r * 0.5))));
-        for (int s = 1; s <= steps; ++s) dab(line[i - 1].first + dx * s / steps, line[i - 1].second + dy * s / steps);
+    };
+    StrokeDabs{paint, line, r}.visit(&dab);
+    for (int y = 0; y < paint.height; ++y) {
+        std::vector<std::pair<int, int>>& spans = rows[static_cast<size_t>(y)];
+        if (spans.empty()) continue;
+        std::sort(spans.begin(), spans.end());
+        uint8_t* row = &paint.types[static_cast<size_t>(y) * paint.width];
+        int filled = -1;  // pixels up to here are painted already
+        for (const auto& [from, to] : spans) {
+            for (int x = std::max(from, filled + 1); x <= to; ++x) row[x] = value;
+            filled = std::max(filled, to);
+        }
     }
 }
 
@@ -280,9 +396,9 @@ synth::MaskReader synth::masksFrom(const ConstraintsJson& written) {
 
 Result<SynthesisConstraints> parseConstraints(const std::string& text, const std::string& base_dir, const ExemplarDatabase& db,
                                               int64_t ox, int64_t oy, int w, int h) {
-    const json c = json::parse(text, nullptr, /*allow_exceptions=*/false);
-    if (c.is_discarded()) return Status::error("constraints: malformed JSON");
-    return synth::parseConstraintsJson(c, synth::masksFromFolder(base_dir), db, ox, oy, w, h);
+    auto parsed = detail::parseJson(text, "constraints");
+    if (!parsed) return parsed.status();
+    return synth::parseConstraintsJson(*parsed, synth::masksFromFolder(base_dir), db, ox, oy, w, h);
 }
 
 Result<SynthesisConstraints> synth::parseConstraintsJson(const json& c, const MaskReader& masks, const ExemplarDatabase& db,

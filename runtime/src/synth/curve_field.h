@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "synth/curve_geometry.h"
@@ -30,5 +31,11 @@ PinnedCurves pinCurves(const std::vector<CurveConstraint>& curves);
 // `held_free_level`: see accumulateCurve (curve_raster.h).
 void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region,
                       double meters_per_pixel0, std::vector<float>& sums, bool held_free_level = false);
+
+// The cost limits of curve constraints (limits.h): counts, coordinates within
+// +-limits::kMaxWindowOrigin, the total course length and the junction count. Cheap checks first;
+// the junctions are found on the cached samplings accumulateCurves uses. `where` prefixes messages
+// ("constraints.curves").
+Status checkCurveLimits(const std::vector<CurveConstraint>& curves, const std::string& where);
 
 }  // namespace terrasynth::synth

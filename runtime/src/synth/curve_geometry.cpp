@@ -7,6 +7,8 @@
 #include <mutex>
 #include <utility>
 
+#include "terrasynth/limits.h"
+
 namespace terrasynth::synth {
 namespace {
 
@@ -105,7 +107,10 @@ std::shared_ptr<const CourseSamples> cachedCourse(const CurveConstraint& curve) 
         bool spline;
         std::shared_ptr<const CourseSamples> samples;
     };
-    constexpr size_t kCapacity = 64;
+    // Room for one project at the limits (kMaxCurves courses, about 1.5 samples per pixel of course
+    // length), and no more than that in memory whatever was cached before.
+    constexpr size_t kCapacity = static_cast<size_t>(limits::kMaxCurves);
+    constexpr size_t kMaxSamples = 4 * static_cast<size_t>(limits::kMaxTotalCourseLengthPx);
     static std::mutex mutex;
     static std::vector<Entry> entries;  // most recently used first
     {
@@ -119,7 +124,12 @@ std::shared_ptr<const CourseSamples> cachedCourse(const CurveConstraint& curve) 
     auto samples = std::make_shared<const CourseSamples>(sampleCourse(curve.course, curve.spline));
     std::lock_guard<std::mutex> lock(mutex);
     entries.insert(entries.begin(), Entry{curve.course, curve.spline, samples});
-    if (entries.size() > kCapacity) entries.pop_back();
+    size_t total = 0;
+    for (const Entry& e : entries) total += e.samples->x.size();
+    while (entries.size() > 1 && (entries.size() > kCapacity || total > kMaxSamples)) {
+        total -= entries.back().samples->x.size();
+        entries.pop_back();
+    }
     return samples;
 }
 

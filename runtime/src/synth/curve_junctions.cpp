@@ -35,7 +35,8 @@ bool adjacent(const CourseSamples& c, size_t i, size_t j) {
 
 }  // namespace
 
-std::vector<CourseCrossing> findCrossings(const std::vector<const CourseSamples*>& courses) {
+CrossingSearch findCrossings(const std::vector<const CourseSamples*>& courses) {
+    CrossingSearch result;
     std::unordered_map<int64_t, std::vector<SegmentRef>> cells;
     auto key = [](int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); };
     for (size_t k = 0; k < courses.size(); ++k) {
@@ -49,9 +50,20 @@ std::vector<CourseCrossing> findCrossings(const std::vector<const CourseSamples*
                 for (int64_t cx = x0; cx <= x1; ++cx) cells[key(cx, cy)].push_back({k, i});
         }
     }
+    // The pairs to test, counted before testing any: a scribble piles thousands of segments into
+    // one cell.
+    uint64_t pair_tests = 0;
+    for (const auto& entry : cells) pair_tests += uint64_t(entry.second.size()) * (entry.second.size() - 1) / 2;
+    if (pair_tests > kMaxCrossingTests) {
+        result.complete = false;
+        return result;
+    }
+    // A crossing is seen from every cell both segments share (up to 4 for a crossing on a corner).
+    const size_t max_found = 8 * static_cast<size_t>(limits::kMaxJunctions);
     std::vector<CourseCrossing> found;
     for (const auto& [cell, refs] : cells) {
         (void)cell;
+        if (found.size() > max_found) break;
         for (size_t m = 0; m < refs.size(); ++m)
             for (size_t n = m + 1; n < refs.size(); ++n) {
                 SegmentRef p = refs[m], q = refs[n];
@@ -78,20 +90,29 @@ std::vector<CourseCrossing> findCrossings(const std::vector<const CourseSamples*
     std::sort(found.begin(), found.end(), [](const CourseCrossing& l, const CourseCrossing& r) {
         return std::tie(l.a, l.b, l.s_a, l.s_b) < std::tie(r.a, r.b, r.s_a, r.s_b);
     });
-    std::vector<CourseCrossing> unique;
+    // `unique` stays sorted like `found`, so the earlier crossings within 1 pixel of arc length on
+    // course a are a run at its end: scan back through that run only.
+    std::vector<CourseCrossing>& unique = result.crossings;
     for (const CourseCrossing& x : found) {
-        const bool repeat = std::any_of(unique.begin(), unique.end(), [&](const CourseCrossing& u) {
-            return u.a == x.a && u.b == x.b && std::abs(u.s_a - x.s_a) < 1.0 && std::abs(u.s_b - x.s_b) < 1.0;
-        });
+        bool repeat = false;
+        for (auto u = unique.rbegin(); u != unique.rend() && u->a == x.a && u->b == x.b && x.s_a - u->s_a < 1.0; ++u)
+            if (std::abs(u->s_a - x.s_a) < 1.0 && std::abs(u->s_b - x.s_b) < 1.0) {
+                repeat = true;
+                break;
+            }
         if (!repeat) unique.push_back(x);
     }
-    return unique;
+    if (found.size() > max_found || unique.size() > static_cast<size_t>(limits::kMaxJunctions)) result.complete = false;
+    return result;
 }
 
 void pinJunctions(const std::vector<CourseCrossing>& crossings, std::vector<CurveProfile>& profiles) {
+    // Pins depend on the widgets only, never on each other: collect them, then index each profile's
+    // once (thousands of junctions must not cost an insertion each).
+    std::vector<std::vector<JunctionPin>> pins(profiles.size());
     for (const CourseCrossing& x : crossings) {
-        CurveProfile& a = profiles[x.a];
-        CurveProfile& b = profiles[x.b];
+        const CurveProfile& a = profiles[x.a];
+        const CurveProfile& b = profiles[x.b];
         double ha = 0.0, hb = 0.0;
         const bool wa = a.widgetNear(x.s_a, kJunctionWidgetSnapPx, &ha);
         const bool wb = b.widgetNear(x.s_b, kJunctionWidgetSnapPx, &hb);
@@ -102,9 +123,11 @@ void pinJunctions(const std::vector<CourseCrossing>& crossings, std::vector<Curv
         else height = 0.5 * (a.heightAt(x.s_a) + b.heightAt(x.s_b));
         const CurveProperties pa = a.widgetsAt(a.t(x.s_a)), pb = b.widgetsAt(b.t(x.s_b));
         const double blend = std::max({4.0, pa.left_reach, pa.right_reach, pb.left_reach, pb.right_reach});
-        a.addPin({x.s_a, height, blend});
-        b.addPin({x.s_b, height, blend});
+        pins[x.a].push_back({x.s_a, height, blend});
+        pins[x.b].push_back({x.s_b, height, blend});
     }
+    for (size_t k = 0; k < profiles.size(); ++k)
+        if (!pins[k].empty()) profiles[k].setPins(std::move(pins[k]));
 }
 
 }  // namespace terrasynth::synth

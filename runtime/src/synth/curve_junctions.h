@@ -8,6 +8,7 @@
 
 #include "synth/curve_geometry.h"
 #include "synth/curve_profile.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth::synth {
 
@@ -20,8 +21,15 @@ struct CourseCrossing {
 
 // Every crossing between the courses and of each course with itself (segments sharing a sample are
 // not crossings). Crossings closer than 1 pixel along both courses are reported once. Uses a
-// uniform grid of segments, so the cost is about linear in the total course length.
-std::vector<CourseCrossing> findCrossings(const std::vector<const CourseSamples*>& courses);
+// uniform grid of segments, so the cost is about linear in the total course length, unless courses
+// pile up in a few grid cells (a scribble): then the search stops once it would test more than
+// kMaxCrossingTests segment pairs or find more than limits::kMaxJunctions crossings, and says so.
+struct CrossingSearch {
+    std::vector<CourseCrossing> crossings;
+    bool complete = true;  // false: a limit was reached, `crossings` holds what was found before
+};
+constexpr uint64_t kMaxCrossingTests = 50000000;
+CrossingSearch findCrossings(const std::vector<const CourseSamples*>& courses);
 
 // A widget within this arc length of a crossing specifies the junction's height.
 constexpr double kJunctionWidgetSnapPx = 2.0;

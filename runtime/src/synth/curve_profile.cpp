@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace terrasynth::synth {
 namespace {
@@ -63,11 +64,36 @@ CurveProperties CurveProfile::widgetsAt(double t) const {
     return p;
 }
 
+void CurveProfile::setPins(std::vector<JunctionPin> pins) {
+    pins_ = std::move(pins);
+    pin_base_.clear();
+    max_blend_ = 0.0;
+    for (const JunctionPin& pin : pins_) {
+        pin_base_.push_back(heightAt(pin.s));
+        max_blend_ = std::max(max_blend_, pin.blend_px);
+    }
+    pins_by_s_.resize(pins_.size());
+    std::iota(pins_by_s_.begin(), pins_by_s_.end(), size_t(0));
+    std::stable_sort(pins_by_s_.begin(), pins_by_s_.end(), [&](size_t a, size_t b) { return pins_[a].s < pins_[b].s; });
+}
+
 CurveProperties CurveProfile::at(double s) const {
     CurveProperties p = widgetsAt(t(s));
-    for (const JunctionPin& pin : pins_) {
+    if (pins_.empty()) return p;
+    // A pin acts within its blend distance only (the falloff is exactly 0 from there on). The pins
+    // that may reach s are found by arc length (with a margin for rounding) and added in the order
+    // they were pinned, so the sum is bit for bit the one over every pin.
+    const double reach = max_blend_ * (1.0 + 1e-9) + 1e-9;
+    const auto first = std::lower_bound(pins_by_s_.begin(), pins_by_s_.end(), s - reach,
+                                        [&](size_t k, double v) { return pins_[k].s < v; });
+    const auto last = std::upper_bound(first, pins_by_s_.end(), s + reach,
+                                       [&](double v, size_t k) { return v < pins_[k].s; });
+    std::vector<size_t> near(first, last);
+    std::sort(near.begin(), near.end());
+    for (size_t k : near) {
+        const JunctionPin& pin = pins_[k];
         const double w = junctionFalloff(std::abs(s - pin.s) / pin.blend_px);
-        if (w > 0.0) p.height += w * (pin.height - heightAt(pin.s));
+        if (w > 0.0) p.height += w * (pin.height - pin_base_[k]);
     }
     return p;
 }
@@ -82,13 +108,13 @@ double CurveProfile::liftAt(double s) const {
 }
 
 bool CurveProfile::widgetNear(double s, double snap_px, double* height) const {
-    for (const CurveWidget& w : widgets_) {
-        if (std::abs(w.t * length_ - s) <= snap_px) {
-            *height = w.height_m;
-            return true;
-        }
-    }
-    return false;
+    // Widgets are sorted by t, so w.t * length - s grows along them: the first widget not more than
+    // snap_px before s is the only one that can be (and the first that is) within snap_px.
+    const auto it = std::partition_point(widgets_.begin(), widgets_.end(),
+                                         [&](const CurveWidget& w) { return w.t * length_ - s < -snap_px; });
+    if (it == widgets_.end() || std::abs(it->t * length_ - s) > snap_px) return false;
+    *height = it->height_m;
+    return true;
 }
 
 CurveProperties capProperties(const CurveProperties& at_end, double leftness) {

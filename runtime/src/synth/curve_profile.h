@@ -49,7 +49,8 @@ public:
     void setLift(const std::vector<float>& lift) { lift_ = lift; }
     double liftAt(double s) const;
 
-    void addPin(const JunctionPin& pin) { pins_.push_back(pin); }
+    // Replaces the junction pins; at() sums their corrections in this order. O(n log n).
+    void setPins(std::vector<JunctionPin> pins);
     const std::vector<JunctionPin>& pins() const { return pins_; }
     double t(double s) const { return length_ > 0.0 ? s / length_ : 0.0; }
     double length() const { return length_; }
@@ -59,6 +60,11 @@ private:
     std::vector<CurveProperties> values_, tangents_;  // per widget, tangents per unit t
     std::vector<JunctionPin> pins_;
     std::vector<float> lift_;
+    // Per pin: the widgets' height at its arc length (what the pin corrects). The pins sorted by arc
+    // length, so at() visits only those within reach: a long scribbled course has thousands.
+    std::vector<double> pin_base_;
+    std::vector<size_t> pins_by_s_;
+    double max_blend_ = 0.0;
     double length_;
 };
 

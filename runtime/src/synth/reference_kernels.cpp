@@ -233,6 +233,18 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                     }
                 }
             }
+            if (best_q < 0) {
+                // Every candidate was rejected (a painted type without seed coordinates at this
+                // level) or costs too much to compare: the pixel keeps its own coordinate, C_1 of
+                // S(p) (synthesis.cl does the same).
+                const PixelState& s = state[pixel];
+                const int c = static_cast<int>(std::floor(s.y + 0.5f)) * db.width + static_cast<int>(std::floor(s.x + 0.5f));
+                const AtlasRect& r = db.rects[db.exemplar[c]];
+                const int qx = std::clamp(c % db.width, r.x + kInteriorMargin, r.x + r.width - 1 - kInteriorMargin);
+                const int qy = std::clamp(c / db.width, r.y + kInteriorMargin, r.y + r.height - 1 - kInteriorMargin);
+                best_q = qy * db.width + qx;
+                candidateCost(db, ns, best_q, weight, 1.0f, &best_h);
+            }
             float v = best_h * scale[0];
             if (keep_v) v = context.previous.v[pixel];
             if (!keep_v && !constraints.blend.empty()) {

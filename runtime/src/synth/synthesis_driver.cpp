@@ -1,5 +1,8 @@
 #include "synth/synthesis_driver.h"
 
+#include "synth/curve_field.h"
+#include "terrasynth/limits.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -23,21 +26,34 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
     if (window.width < 1 || window.height < 1 || window.width > 16384 || window.height > 16384)
         return Status::error("window size must be 1..16384 per side, got " + std::to_string(window.width) + "x" +
                              std::to_string(window.height));
-    if (std::llabs(window.x) > kMaxGlobalCoordinate || std::llabs(window.y) > kMaxGlobalCoordinate)
+    // Compared without negating: -INT64_MIN does not exist.
+    if (window.x < -kMaxGlobalCoordinate || window.x > kMaxGlobalCoordinate || window.y < -kMaxGlobalCoordinate ||
+        window.y > kMaxGlobalCoordinate)
         return Status::error("window origin beyond +-2^29 pixels");
     if (params.first_constrained_level < 0 || params.first_constrained_level > 12)
         return Status::error("first_constrained_level must be 0..12");
     if (params.constraints) {
-        for (size_t i = 0; i < params.constraints->points.size(); ++i) {
-            const PointConstraint& p = params.constraints->points[i];
-            if (!(p.radius_px > 0.0f) || !std::isfinite(p.height_m) || !std::isfinite(p.lift_m) || !std::isfinite(p.tilt_east) ||
-                !std::isfinite(p.tilt_south) || !(p.slope_angle_deg >= 0.0f && p.slope_angle_deg <= 80.0f))
+        const SynthesisConstraints& c = *params.constraints;
+        if (c.points.size() > static_cast<size_t>(limits::kMaxPointConstraints))
+            return Status::error("constraints: " + std::to_string(c.points.size()) + " point constraints, at most " +
+                                 std::to_string(limits::kMaxPointConstraints));
+        const double bound = static_cast<double>(kMaxGlobalCoordinate);
+        for (size_t i = 0; i < c.points.size(); ++i) {
+            const PointConstraint& p = c.points[i];
+            if (!(p.radius_px > 0.0f && p.radius_px <= 1e6f) || !std::isfinite(p.height_m) || !std::isfinite(p.lift_m) ||
+                !std::isfinite(p.tilt_east) || !std::isfinite(p.tilt_south) ||
+                !(p.slope_angle_deg >= 0.0f && p.slope_angle_deg <= 80.0f) || !std::isfinite(p.slope_direction_deg) ||
+                !(std::fabs(p.x) <= bound && std::fabs(p.y) <= bound))
                 return Status::error("point constraint " + std::to_string(i) +
-                                     ": radius must be > 0, height and lifts finite, slope angle 0..80 degrees");
+                                     ": site within +-2^29 pixels, radius in (0, 1e6], height and lifts finite, slope angle "
+                                     "0..80 degrees");
         }
-        for (size_t i = 0; i < params.constraints->curves.size(); ++i)
-            for (float lift : params.constraints->curves[i].lift_m)
+        if (Status s = checkCurveLimits(c.curves, "constraints.curves"); !s) return s;
+        for (size_t i = 0; i < c.curves.size(); ++i)
+            for (float lift : c.curves[i].lift_m)
                 if (!std::isfinite(lift)) return Status::error("curve constraint " + std::to_string(i) + ": lift must be finite");
+        if (c.types.types.size() != static_cast<size_t>(std::max(0, c.types.width)) * std::max(0, c.types.height))
+            return Status::error("constraints: type painting size does not match its rectangle");
         if (!params.constraints->types.empty() && db.type_names.size() > static_cast<size_t>(kMaxPaintableTypes))
             return Status::error("type painting supports databases of at most " + std::to_string(kMaxPaintableTypes) +
                                  " types; this one has " + std::to_string(db.type_names.size()));

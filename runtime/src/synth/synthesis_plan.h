@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "terrasynth/limits.h"
 #include "terrasynth/synthesizer.h"
 
 namespace terrasynth::synth {
@@ -33,7 +34,7 @@ constexpr int kSubpassReach = 2;
 // Subpass parities in order (Lefebvre & Hoppe 2005 use 2x2 subpasses).
 constexpr int kSubpassParity[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
 // Global coordinates must stay well inside int32 at every level.
-constexpr int64_t kMaxGlobalCoordinate = int64_t(1) << 29;
+constexpr int64_t kMaxGlobalCoordinate = limits::kMaxWindowOrigin;
 
 SynthesisPlan planSynthesis(const PixelWindow& window, int output_level, int coarsest_level, int passes);
 

@@ -1,0 +1,22 @@
+// The host's only GL calls: ImGui drawn over OSG's frame, and screenshots. Private to the host.
+#pragma once
+
+#include <string>
+
+#include <osg/State>
+
+#include "terrasynth/status.h"
+
+namespace terrasynth::host {
+
+// Renders ImGui's current frame (ImGui::Render must not have been called yet) over the viewport,
+// entering from OSG's GL state and leaving OSG's state tracker true to what GL then is, so the
+// next OSG draw re-applies what it needs (OpenSceneGraph issue 924: geometry merged after an
+// overlay drew would otherwise stop drawing, because OSG believes client arrays are still enabled).
+void drawImGuiOverOsg(osg::State& state);
+
+// Reads the current draw buffer (width x height, RGB) and writes it as a PNG at `path`, atomically
+// (a temporary file beside it, then rename). Errors name the file.
+Status writeScreenshot(int width, int height, const std::string& path);
+
+}  // namespace terrasynth::host
