@@ -136,6 +136,43 @@ void runChecks() {
     ASSERT_TRUE(depth.valid());
     EXPECT_TRUE(isGreen(pixel(*depth, 280, 200))) << "the overlay broke depth testing";
 
+    // Depth testing still works after ImGui drew: a nearer rectangle drawn first hides a farther one
+    // drawn after it (the host must not leave OSG believing a mode is enabled when it is not).
+    osg::ref_ptr<osg::Group> layered = new osg::Group;
+    layered->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+    layered->addChild(rectangle(0.0f, 1.0f, 0.5f, {0, 1, 0, 1}));
+    layered->addChild(rectangle(0.0f, 1.0f, -0.5f, {1, 0, 0, 1}));
+    host.viewer().setSceneData(layered.get());
+    for (int i = 0; i < 3; ++i) frame();
+    osg::ref_ptr<osg::Image> layered_shot = shot("depth.png", true);
+    ASSERT_TRUE(layered_shot.valid());
+    EXPECT_TRUE(isGreen(pixel(*layered_shot, 250, 200))) << "the farther rectangle drawn last covered the nearer one";
+    host.viewer().setSceneData(root.get());
+    frame();
+
+    // Images for ImGui: a solid-colour texture drawn with ImGui::Image shows its colour.
+    std::vector<uint8_t> blue_pixels(16 * 16 * 4, 255);
+    for (size_t i = 0; i < blue_pixels.size(); i += 4) blue_pixels[i] = blue_pixels[i + 1] = 0;
+    const ImTextureID blue = host.uploadImage(blue_pixels, 16, 16);
+    auto image_frame = [&] {
+        host.beginFrame();
+        ImGui::SetNextWindowPos(ImVec2(170, 10));
+        ImGui::SetNextWindowSize(ImVec2(120, 100));
+        ImGui::Begin("Image", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+        ImGui::Image(blue, ImVec2(64, 48));
+        ImGui::End();
+        return host.endFrame();
+    };
+    image_frame();
+    host.requestScreenshot(dir + "/image.png", true);
+    image_frame();
+    osg::ref_ptr<osg::Image> with_image = osgDB::readImageFile(dir + "/image.png");
+    ASSERT_TRUE(with_image.valid());
+    const osg::Vec3i texel = pixel(*with_image, 170 + 8 + 32, 10 + 30 + 20);
+    EXPECT_TRUE(texel.x() < 40 && texel.y() < 40 && texel.z() > 200) << texel.x() << "," << texel.y() << "," << texel.z();
+    host.releaseImage(blue);
+    frame();
+
     // A click on the panel's button reaches ImGui only.
     recorder->types.clear();
     host.injectMouseMove(60, 50);

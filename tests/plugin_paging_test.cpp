@@ -206,3 +206,52 @@ TEST(PluginPaging, EditsSwapOnlyTilesWhoseHeightsChange) {
 
 }  // namespace
 }  // namespace terrasynth::plugin
+
+namespace terrasynth::plugin {
+namespace {
+
+// An editor drag: every frame a new edit invalidates the same tiles before their rebuilds finish.
+// Rebuilds read between two edits are still swapped in (they are newer than what is drawn), so the
+// tiles on screen follow the drag instead of waiting for it to stop; tilesAwaitingRebuild tells when
+// an edit's tiles are on screen.
+TEST(PluginPaging, ContinuousEditsStillReachTheScreen) {
+    TerrainNodeOptions o = smallTiles();
+    o.threads = 1;  // rebuilds slower than the edits come
+    Fixture fx(o, "orom_rockies");
+    const osg::Vec3d eye(15000, -15000, 5000), center(22000, -22000, 1500);
+    ASSERT_GE(fx.settle(eye, center), 0);
+    const PixelWindow edit{220, 220, 60, 60};
+    std::vector<uint64_t> generations;
+    std::vector<int> resolved_at;  // frame at which each edit's drawn tiles were all rebuilt
+    const TerrainStats before = fx.node->stats();
+    constexpr int kEdits = 40;
+    for (int f = 0; f < kEdits; ++f) {
+        const float raise = 10.0f * static_cast<float>(f + 1);
+        fx.node->setHeightSource(editedSource(fx.source, [edit, raise](const PixelWindow& w, int level, Heightfield& h) {
+            const int64_t s = int64_t{1} << level;
+            for (int y = 0; y < h.height; ++y)
+                for (int x = 0; x < h.width; ++x) {
+                    const int64_t gx = (w.x + x) * s, gy = (w.y + y) * s;
+                    if (gx < edit.x + edit.width && gx + s > edit.x && gy < edit.y + edit.height && gy + s > edit.y) h.at(x, y) += raise;
+                }
+            std::this_thread::sleep_for(std::chrono::milliseconds(3));  // a slow source
+        }));
+        generations.push_back(fx.node->invalidate(edit, 0));
+        resolved_at.push_back(-1);
+        fx.view->frame(eye, center);
+        for (size_t g = 0; g < generations.size(); ++g)
+            if (resolved_at[g] < 0 && fx.node->tilesAwaitingRebuild(generations[g]) == 0) resolved_at[g] = f;
+        std::this_thread::sleep_for(std::chrono::milliseconds(15));
+    }
+    int during = 0;
+    for (int g = 0; g < kEdits; ++g) during += resolved_at[static_cast<size_t>(g)] >= 0;
+    EXPECT_GT(during, kEdits / 4) << "edits only reached the screen after the drag stopped";
+    EXPECT_GT(fx.node->stats().tiles_swapped, before.tiles_swapped);
+    EXPECT_GT(fx.node->stats().tiles_invalidated, before.tiles_invalidated);
+    // Once the edits stop, everything settles on the last one.
+    ASSERT_GE(fx.settle(eye, center), 0);
+    EXPECT_EQ(fx.node->tilesAwaitingRebuild(generations.back()), 0u);
+}
+
+}  // namespace
+}  // namespace terrasynth::plugin

@@ -229,7 +229,7 @@ TEST_F(CliHardening, SmallerMessagesNameWhatIsWrong) {
     // A folder given as the project was "malformed JSON".
     expectRefused("synth " + dir_ + " -o " + path("o.png"), {dir_ + ": is a folder, not a file"});
     // An unknown subcommand printed "A subcommand is required".
-    expectRefused("frobnicate", {"terrasynth: unknown command \"frobnicate\" (commands: db, synth, layers, stats, export)"});
+    expectRefused("frobnicate", {"terrasynth: unknown command \"frobnicate\" (commands: db, synth, layers, stats, export, bake)"});
     expectRefused("db frob x", {"terrasynth db: unknown command \"frob\" (commands: build)"});
 }
 

@@ -169,12 +169,24 @@ bool TerrainNode::touches(const TileKey& key, const PixelWindow& r) const {
     return x0 < r.x + r.width && r.x < x1 && y0 < r.y + r.height && r.y < y1;
 }
 
-void TerrainNode::invalidate(const PixelWindow& region, int64_t margin_px) {
+uint64_t TerrainNode::invalidate(const PixelWindow& region, int64_t margin_px) {
     const PixelWindow widened{region.x - margin_px, region.y - margin_px,
                               static_cast<int>(region.width + 2 * margin_px),
                               static_cast<int>(region.height + 2 * margin_px)};
     std::lock_guard<std::mutex> lock(mutex_);
     invalidateLocked({++generation_, widened, false});
+    return generation_;
+}
+
+size_t TerrainNode::tilesAwaitingRebuild(uint64_t generation) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    size_t n = 0;
+    for (const TileKey& key : drawn_keys_) {
+        // A dirty tile built at or after `generation` already shows that edit (a later one marked it).
+        auto it = tiles_.find(key);
+        n += it != tiles_.end() && it->second.dirty && it->second.generation < generation;
+    }
+    return n;
 }
 
 void TerrainNode::invalidateAll() {
@@ -195,6 +207,7 @@ void TerrainNode::invalidateLocked(const Invalidation& inv) {
         const bool in_view = cull_frame_ != ~0u && it->second.last_used_frame + 1 >= cull_frame_;
         if (in_view) {
             it->second.dirty = true;
+            ++stats_.tiles_invalidated;
             ++it;
         } else {
             resident_bytes_ -= it->second.bytes;

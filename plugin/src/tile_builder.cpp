@@ -150,6 +150,9 @@ TileBuild buildTileUnguarded(const HeightSource& source, const TileKey& key, con
             return out;
         }
         type_ids = vertexTypes(mesh, *ids, tw.width, s.layout.spacing(key.level));
+        // The types are part of what is drawn: a rebuild whose heights are equal but whose types
+        // differ (an editor's painting overlay) must still be swapped in.
+        for (uint8_t id : *ids) out.heights_hash = (out.heights_hash ^ id) * 1099511628211ull;
     }
 
     // 5. The detached render model.

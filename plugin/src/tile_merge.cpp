@@ -98,26 +98,22 @@ void TerrainNode::attach(TileBuild&& build) {
         OSG_WARN << "terrasynth: " << build.status.message() << std::endl;
         return;
     }
-    if (staleLocked(build.key, build.generation)) {
-        // Read before an edit touching it; the (still dirty or missing) tile will be wanted again.
-        ++stats_.stale_builds_dropped;
-        return;
-    }
     auto it = tiles_.find(build.key);
-    if (it != tiles_.end()) {
-        Tile& tile = it->second;
-        tile.dirty = false;
-        tile.generation = build.generation;
-        if (tile.hash == build.heights_hash) {
-            ++stats_.rebuilds_unchanged;  // the edit did not reach this tile's samples
+    if (staleLocked(build.key, build.generation)) {
+        // Read before an edit touching it. A tile still on screen with older heights takes it anyway
+        // and stays marked for the newest: while an editor drags, every edit invalidates the same
+        // tiles again, and waiting for a build no later edit overtakes would show nothing until the
+        // drag stops. Otherwise the (still dirty or missing) tile will be wanted again.
+        if (it == tiles_.end() || !it->second.dirty || build.generation <= it->second.generation) {
+            ++stats_.stale_builds_dropped;
             return;
         }
-        replaceChild(tile.node.get(), build.node.get());
-        released_.emplace_back(cull_frame_, tile.node);
-        resident_bytes_ = resident_bytes_ - tile.bytes + build.bytes;
-        adoptBuild(tile, build);
-        ++stats_.tiles_swapped;
-        ++stats_.tiles_merged;
+        swapIn(it->second, std::move(build));
+        return;
+    }
+    if (it != tiles_.end()) {
+        swapIn(it->second, std::move(build));
+        it->second.dirty = false;
         return;
     }
     Tile tile;
@@ -126,6 +122,20 @@ void TerrainNode::attach(TileBuild&& build) {
     tile.last_used_frame = cull_frame_ == ~0u ? 0 : cull_frame_;
     resident_bytes_ += tile.bytes;
     tiles_.emplace(build.key, std::move(tile));
+    ++stats_.tiles_merged;
+}
+
+void TerrainNode::swapIn(Tile& tile, TileBuild&& build) {
+    tile.generation = build.generation;
+    if (tile.hash == build.heights_hash) {
+        ++stats_.rebuilds_unchanged;  // the edit did not reach this tile's samples
+        return;
+    }
+    replaceChild(tile.node.get(), build.node.get());
+    released_.emplace_back(cull_frame_, tile.node);
+    resident_bytes_ = resident_bytes_ - tile.bytes + build.bytes;
+    adoptBuild(tile, build);
+    ++stats_.tiles_swapped;
     ++stats_.tiles_merged;
 }
 

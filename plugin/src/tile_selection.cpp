@@ -111,8 +111,13 @@ void TerrainNode::selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile&
     tile.last_used_frame = frame;
     const osg::Vec3d eye = cv.getEyeLocal();
     const double d = distanceToBox(eye, tile.box);
-    if (tile.dirty) want(key, kDirtyPriority + d);
-    if (cv.isCulled(tile.box)) return;
+    // Edited tiles on screen are rebuilt first; those refined away or out of view (kept for when
+    // the view changes) after the missing tiles nearer than them.
+    const double hidden_priority = d / layout_.tileMeters(key.level);
+    if (cv.isCulled(tile.box)) {
+        if (tile.dirty) want(key, hidden_priority);
+        return;
+    }
 
     const bool refine = key.level > options_.min_level &&
                         layout_.spacing(key.level) * screenPixelsPerMeter(cv, d) > options_.pixel_error;
@@ -134,10 +139,12 @@ void TerrainNode::selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile&
             }
         }
         if (all) {
+            if (tile.dirty) want(key, hidden_priority);
             for (int c = 0; c < 4; ++c) selectTile(cv, key.child(c % 2, c / 2), *children[c]);
             return;
         }
     }
+    if (tile.dirty) want(key, kDirtyPriority + d);
     tile.node->accept(cv);
     drawn_.push_back(tile.node);
     drawn_keys_.push_back(key);

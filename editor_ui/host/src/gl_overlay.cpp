@@ -13,6 +13,39 @@
 
 namespace terrasynth::host {
 
+unsigned newImageTexture() {
+    GLuint name = 0;
+    glGenTextures(1, &name);
+    return name;
+}
+
+void drawImGuiOverOsg(osg::State& state, std::vector<ImageUpload>& uploads, std::vector<unsigned>& doomed) {
+    if (!uploads.empty() || !doomed.empty()) {
+        // Unit 0 is OSG's to track: bind through GL, then put back what OSG believes is bound.
+        state.setActiveTextureUnit(0);
+        GLint bound = 0;
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        for (const ImageUpload& u : uploads) {
+            glBindTexture(GL_TEXTURE_2D, u.texture);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, u.width, u.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, u.rgba.data());
+        }
+        for (unsigned name : doomed) {
+            const GLuint n = name;
+            glDeleteTextures(1, &n);
+        }
+        glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        uploads.clear();
+        doomed.clear();
+    }
+    drawImGuiOverOsg(state);
+}
+
 void drawImGuiOverOsg(osg::State& state) {
     // ImGui's OpenGL2 backend draws with the fixed-function pipeline from client-side arrays on
     // texture unit 0 and leaves every client array disabled. OSG 3.6 only re-enables an array it

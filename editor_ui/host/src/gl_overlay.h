@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <osg/State>
 
@@ -14,6 +15,17 @@ namespace terrasynth::host {
 // next OSG draw re-applies what it needs (OpenSceneGraph issue 924: geometry merged after an
 // overlay drew would otherwise stop drawing, because OSG believes client arrays are still enabled).
 void drawImGuiOverOsg(osg::State& state);
+
+// Texture uploads for ImGui images, done while the overlay owns the GL state (unit 0 active).
+struct ImageUpload {
+    unsigned texture = 0;  // GL name from newImageTexture()
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+};
+unsigned newImageTexture();
+// Uploads (then clears) `uploads` and deletes `doomed` (then clears), then renders ImGui as
+// drawImGuiOverOsg does.
+void drawImGuiOverOsg(osg::State& state, std::vector<ImageUpload>& uploads, std::vector<unsigned>& doomed);
 
 // Reads the current draw buffer (width x height, RGB) and writes it as a PNG at `path`, atomically
 // (a temporary file beside it, then rename). Errors name the file.

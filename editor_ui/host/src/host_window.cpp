@@ -3,7 +3,9 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <atomic>
 #include <chrono>
 
@@ -76,6 +78,9 @@ struct HostWindow::Impl {
     bool screenshot_with_overlay = false;
     osg::ref_ptr<osg::Image> capture;
     bool capture_with_overlay = false;
+    std::vector<ImageUpload> uploads;  // image pixels waiting for the overlay step
+    std::vector<unsigned> doomed;      // image textures to delete there
+    std::vector<unsigned> images;      // live image textures
 
     static Impl& of(GLFWwindow* w) { return *static_cast<Impl*>(glfwGetWindowUserPointer(w)); }
     void push(InputEvent e) { pending.push_back(e); }
@@ -219,6 +224,7 @@ Result<std::unique_ptr<HostWindow>> HostWindow::create(const HostOptions& o) {
     impl.window = window;
     glfwMakeContextCurrent(window);
     glfwSwapInterval(o.vsync ? 1 : 0);
+    if (const GLubyte* renderer = glGetString(GL_RENDERER)) host->gl_renderer_ = reinterpret_cast<const char*>(renderer);
     glfwSetWindowUserPointer(window, &impl);
     glfwGetFramebufferSize(window, &host->width_, &host->height_);
 
@@ -262,6 +268,10 @@ Result<std::unique_ptr<HostWindow>> HostWindow::create(const HostOptions& o) {
 HostWindow::~HostWindow() {
     if (!impl_->window) return;
     glfwMakeContextCurrent(impl_->window);
+    for (unsigned name : impl_->images) {
+        const GLuint n = name;
+        glDeleteTextures(1, &n);
+    }
     if (impl_->imgui_gl) ImGui_ImplOpenGL2_Shutdown();
     if (impl_->imgui_glfw) ImGui_ImplGlfw_Shutdown();
     if (ImGui::GetCurrentContext()) ImGui::DestroyContext();
@@ -277,6 +287,7 @@ bool HostWindow::beginFrame() {
     impl.frame_start = Clock::now();
     impl.frame_start_cpu = threadCpuMs();
     glfwPollEvents();
+
     int w = 0, h = 0;
     glfwGetFramebufferSize(impl.window, &w, &h);
     if ((w != width_ || h != height_) && w > 0 && h > 0) {
@@ -356,7 +367,7 @@ FrameTiming HostWindow::endFrame(double simulation_time_s) {
     if (impl.capture && !impl.capture_with_overlay) capture();
 
     const auto overlay_start = Clock::now();
-    drawImGuiOverOsg(*impl.embedded->getState());
+    drawImGuiOverOsg(*impl.embedded->getState(), impl.uploads, impl.doomed);
     if (options_.finish_gl_for_timing) glFinish();
     t.overlay_ms = msBetween(overlay_start, Clock::now());
 
@@ -383,6 +394,31 @@ void HostWindow::requestScreenshot(const std::string& png_path, bool with_overla
 void HostWindow::requestCapture(osg::Image* image, bool with_overlay) {
     impl_->capture = image;
     impl_->capture_with_overlay = with_overlay;
+}
+
+ImTextureID HostWindow::uploadImage(const std::vector<uint8_t>& rgba, int width, int height, ImTextureID previous) {
+    TERRASYNTH_REQUIRE(width > 0 && height > 0 && rgba.size() == static_cast<size_t>(width) * height * 4,
+                       "an image is width x height RGBA8 pixels");
+    Impl& impl = *impl_;
+    auto name = static_cast<unsigned>(reinterpret_cast<uintptr_t>(previous));
+    if (std::find(impl.images.begin(), impl.images.end(), name) == impl.images.end()) {
+        name = newImageTexture();
+        impl.images.push_back(name);
+    }
+    impl.uploads.push_back({name, width, height, rgba});
+    return reinterpret_cast<ImTextureID>(static_cast<uintptr_t>(name));
+}
+
+void HostWindow::releaseImage(ImTextureID image) {
+    Impl& impl = *impl_;
+    const auto name = static_cast<unsigned>(reinterpret_cast<uintptr_t>(image));
+    auto it = std::find(impl.images.begin(), impl.images.end(), name);
+    if (it == impl.images.end()) return;
+    impl.images.erase(it);
+    impl.uploads.erase(std::remove_if(impl.uploads.begin(), impl.uploads.end(),
+                                      [name](const ImageUpload& u) { return u.texture == name; }),
+                       impl.uploads.end());
+    impl.doomed.push_back(name);
 }
 
 namespace {

@@ -11,7 +11,8 @@
 //    count and on the measured main-thread time; then least-recently drawn tiles are evicted until the
 //    resident memory fits the cache budget.
 // Editing: invalidate() marks the tiles whose heights may change; they are rebuilt in the background
-// and swapped whole (new geometry, never DYNAMIC edits) only when their heights actually differ.
+// (those drawn first, the coarser ones above them after) and swapped whole (new geometry, never
+// DYNAMIC edits) only when their heights actually differ.
 //
 // Threading: OSG calls traverse() from the update and cull threads (never both at once for one
 // frame in osgViewer, but a mutex guards the shared state anyway); the other public methods are
@@ -82,6 +83,7 @@ struct TerrainStats {
     float drawn_min_height = 0.0f, drawn_max_height = 0.0f;  // over the tiles drawn in the last cull
     uint64_t tiles_built = 0, tiles_merged = 0, tiles_swapped = 0, rebuilds_unchanged = 0;
     uint64_t tiles_evicted = 0, build_failures = 0, stale_builds_dropped = 0;
+    uint64_t tiles_invalidated = 0;  // resident tiles in view marked for a rebuild by invalidate*()
     int last_merge_count = 0;
     double last_merge_ms = 0.0;   // main-thread time of the last UPDATE's merge step
     double max_merge_ms = 0.0;    // largest since construction (or resetMergeStats)
@@ -141,8 +143,15 @@ public:
     // Marks every tile whose samples (apron included) may change when the level-0 heights inside
     // `region` change, widened by `margin_px` level-0 pixels for filters that spread an edit.
     // Marked tiles still drawn are rebuilt and swapped when their heights differ; others are dropped.
-    void invalidate(const PixelWindow& region, int64_t margin_px = 0);
+    // Returns the invalidation's generation (increasing), for tilesAwaitingRebuild().
+    uint64_t invalidate(const PixelWindow& region, int64_t margin_px = 0);
     void invalidateAll();
+    // Tiles drawn by the last cull whose heights predate invalidation `generation`: marked by it (or
+    // an earlier one) and not yet rebuilt. 0 = everything that invalidation changed on screen has
+    // been swapped in (or found unchanged) by an UPDATE, e.g. for an editor's edit-to-screen latency.
+    // While edits keep coming, a rebuild read between two of them is swapped in (it is newer than
+    // what is drawn) and the tile stays marked for the newest.
+    size_t tilesAwaitingRebuild(uint64_t generation) const;
     // Replaces the height source (e.g. after an edit); call invalidate*() for the changed area.
     void setHeightSource(HeightSource source);
 
@@ -196,6 +205,7 @@ private:
     void update(unsigned frame);
     void mergeCompleted(unsigned frame);
     void attach(TileBuild&& build);
+    void swapIn(Tile& tile, TileBuild&& build);  // a rebuild of a resident tile (unless unchanged)
     void planBuilds();
     void evict(unsigned frame);
     // Children = the tiles the last cull drew (what writers and intersection visitors see).

@@ -46,7 +46,9 @@ struct TileBuild {
     osg::ref_ptr<osg::Node> node;
     osg::BoundingBox box;      // world frame, including the skirt
     float min_height = 0.0f, max_height = 0.0f;  // of the meshed samples
-    uint64_t heights_hash = 0; // FNV-1a of the window's bits, apron included: equal hash = same tile
+    // FNV-1a of the window's bits, apron included, and of the type ids when a type source was read:
+    // equal hash = same tile.
+    uint64_t heights_hash = 0;
     size_t bytes = 0;          // client-side vertex and index memory of the node
     size_t triangles = 0;      // drawn per frame when the tile is drawn (skirts included)
     double heights_ms = 0.0, mesh_ms = 0.0, osg_ms = 0.0;

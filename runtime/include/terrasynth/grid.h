@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -56,6 +57,28 @@ inline PixelWindow uniteWindows(const PixelWindow& a, const PixelWindow& b) {
 // The window grown by `by` pixels on every side.
 inline PixelWindow growWindow(const PixelWindow& w, int by) {
     return {w.x - by, w.y - by, w.width + 2 * by, w.height + 2 * by};
+}
+
+// The smallest window holding every sample where two planes over `extent` (row-major,
+// extent.width * extent.height values each) differ; empty (width 0) when they are equal. What an
+// edit changed, from the planes before and after it.
+template <class T>
+PixelWindow differingWindow(const PixelWindow& extent, const std::vector<T>& before, const std::vector<T>& after) {
+    int64_t x0 = INT64_MAX, y0 = INT64_MAX, x1 = INT64_MIN, y1 = INT64_MIN;
+    for (int y = 0; y < extent.height; ++y) {
+        const T* a = before.data() + static_cast<size_t>(y) * extent.width;
+        const T* b = after.data() + static_cast<size_t>(y) * extent.width;
+        int first = 0, last = extent.width - 1;
+        while (first <= last && a[first] == b[first]) ++first;
+        if (first > last) continue;
+        while (a[last] == b[last]) --last;
+        x0 = x0 < extent.x + first ? x0 : extent.x + first;
+        x1 = x1 > extent.x + last + 1 ? x1 : extent.x + last + 1;
+        y0 = y0 < extent.y + y ? y0 : extent.y + y;
+        y1 = extent.y + y + 1;
+    }
+    if (x1 <= x0) return {extent.x, extent.y, 0, 0};
+    return {x0, y0, static_cast<int>(x1 - x0), static_cast<int>(y1 - y0)};
 }
 
 // Heights (metres) of `window` in the global grid of `level`: exactly window.width x window.height

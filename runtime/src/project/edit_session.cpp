@@ -127,29 +127,13 @@ Status EditSession::Impl::compose() {
 PixelWindow EditSession::Impl::publish() {
     auto previous = std::atomic_load(&snapshot);
     auto now = std::make_shared<const std::vector<float>>(heights.heights);
-    int64_t x0 = INT64_MAX, y0 = INT64_MAX, x1 = INT64_MIN, y1 = INT64_MIN;
     const bool same_world = previous && previous->world == world && previous->edit->referencePtr() == reference0;
-    if (!same_world) {
-        x0 = extent.x, y0 = extent.y, x1 = extent.x + extent.width, y1 = extent.y + extent.height;
-    } else {
-        const std::vector<float>& before = previous->edit->heights();
-        for (int y = 0; y < extent.height; ++y) {
-            const float* a = before.data() + static_cast<size_t>(y) * extent.width;
-            const float* b = now->data() + static_cast<size_t>(y) * extent.width;
-            if (std::equal(a, a + extent.width, b)) continue;
-            int first = 0, last = extent.width - 1;
-            while (a[first] == b[first]) ++first;
-            while (a[last] == b[last]) --last;
-            x0 = std::min<int64_t>(x0, extent.x + first), x1 = std::max<int64_t>(x1, extent.x + last + 1);
-            y0 = std::min<int64_t>(y0, extent.y + y), y1 = std::max<int64_t>(y1, extent.y + y + 1);
-        }
-    }
+    const PixelWindow changed = same_world ? differingWindow(extent, previous->edit->heights(), *now) : extent;
     auto next = std::make_shared<SessionSnapshot>();
     next->world = world;
     next->edit = std::make_shared<const project::ExtentEdit>(extent, std::move(now), reference0);
     std::atomic_store(&snapshot, std::shared_ptr<const SessionSnapshot>(std::move(next)));
-    if (x1 <= x0) return {extent.x, extent.y, 0, 0};
-    return {x0, y0, static_cast<int>(x1 - x0), static_cast<int>(y1 - y0)};
+    return changed;
 }
 
 void EditSession::Impl::swapStep(EditStep& step) {

@@ -13,7 +13,8 @@
 //    the last button is released; whoever gets a key press gets its release;
 //  - event injection for scripted runs: injected events take the same route as real ones, applied
 //    after the ImGui backend polled the window (the 1.86 GLFW backend reads the mouse by polling);
-//  - per-frame timing (frame_stats.h) and screenshots read back from the frame being drawn.
+//  - per-frame timing (frame_stats.h) and screenshots read back from the frame being drawn;
+//  - images (RGBA pixels) as textures for ImGui::Image, uploaded while the overlay draws.
 //
 // A frame is beginFrame() -> the application's work (read routedEvents(), move the camera, build
 // ImGui windows) -> endFrame(). Panels and game code only talk to ImGui and OSG; GL calls stay here.
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include <osg/Image>
+#include <imgui.h>
 #include <osg/Vec4>
 #include <osg/ref_ptr>
 #include <osgViewer/Viewer>
@@ -91,6 +93,13 @@ public:
     // for checks on what was drawn. The caller keeps `image` alive until that endFrame returns.
     void requestCapture(osg::Image* image, bool with_overlay);
 
+    // Images for ImGui::Image (thumbnails, previews): `rgba` is width x height RGBA8, row 0 at the top.
+    // Returns the texture id to draw (usable in this frame already: the pixels are uploaded when
+    // the overlay draws); passing a previous id of the same size replaces its pixels. Textures live
+    // until releaseImage or the window closes.
+    ImTextureID uploadImage(const std::vector<uint8_t>& rgba, int width, int height, ImTextureID previous = nullptr);
+    void releaseImage(ImTextureID image);
+
     // Scripted input, applied at the next beginFrame in the order given, routed like real input.
     void injectKey(int glfw_key, bool pressed, int mods = 0);
     void injectChar(uint32_t codepoint);
@@ -98,6 +107,8 @@ public:
     void injectMouseButton(int button, bool pressed, int mods = 0);
     void injectScroll(double dx, double dy);
 
+    // The GL implementation frames are drawn with (GL_RENDERER), e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+    const std::string& glRenderer() const { return gl_renderer_; }
     int width() const { return width_; }
     int height() const { return height_; }
     const HostOptions& options() const { return options_; }
@@ -112,6 +123,7 @@ private:
     osg::ref_ptr<osgViewer::Viewer> viewer_;
     std::unique_ptr<Impl> impl_;
     std::vector<InputEvent> routed_;
+    std::string gl_renderer_;
     Status screenshot_status_ = Status::ok();
 };
 
