@@ -7,34 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth_host/frame_stats_json.h"
 
 namespace terrasynth::game {
-namespace {
-
 using nlohmann::json;
-
-json summary(const std::vector<double>& values) {
-    const host::SeriesSummary s = host::summarize(values);
-    return {{"count", s.count}, {"mean", s.mean}, {"median", s.median}, {"p95", s.p95}, {"max", s.max}};
-}
-
-json timings(const host::FrameTimeSeries& f) {
-    using T = host::FrameTiming;
-    return {{"frame_ms", summary(f.column(&T::frame_ms))},
-            {"main_thread_ms", summary(f.mainThread())},
-            {"gl_ms", summary(f.gl())},
-            {"events_ms", summary(f.column(&T::events_ms))},
-            {"app_ms", summary(f.column(&T::app_ms))},
-            {"update_ms", summary(f.column(&T::update_ms))},
-            {"cull_ms", summary(f.column(&T::cull_ms))},
-            {"draw_ms", summary(f.column(&T::draw_ms))},
-            {"overlay_ms", summary(f.column(&T::overlay_ms))},
-            {"swap_ms", summary(f.column(&T::swap_ms))},
-            {"main_cpu_ms", summary(f.column(&T::main_cpu_ms))},
-            {"draw_cpu_ms", summary(f.column(&T::draw_cpu_ms))}};
-}
-
-}  // namespace
+using host::summaryJson;
 
 double residentMb() {
     long pages = 0, resident = 0;
@@ -57,10 +34,10 @@ Status writeStatsJson(const std::string& path, const GameOptions& o, const RunSt
     j["terrain_ready_s"] = s.terrain_ready_s;
     j["first_frame_s"] = s.first_frame_s;
     j["frames"] = s.frames.frames().size();
-    j["timing"] = timings(s.frames);
-    j["merge_ms"] = summary(s.merge_ms);
-    j["triangles"] = summary(s.triangles);
-    j["height_at_us"] = summary(s.height_at_us);
+    j["timing"] = host::frameTimesJson(s.frames);
+    j["merge_ms"] = summaryJson(s.merge_ms);
+    j["triangles"] = summaryJson(s.triangles);
+    j["height_at_us"] = summaryJson(s.height_at_us);
     j["height_at_level0"] = {{"samples", s.height_at_level0_samples}, {"max_error_m", s.height_at_level0_max_error_m}};
     j["max_rss_mb"] = s.max_rss_mb;
     j["flight"] = {{"steps", s.steps},
@@ -89,8 +66,8 @@ Status writeStatsJson(const std::string& path, const GameOptions& o, const RunSt
                    {"fetch_ms_mean", s.ground_fetch_ms_mean},
                    {"fetch_ms_max", s.ground_fetch_ms_max}};
     if (!s.replay.frames().empty()) {
-        j["replay"] = timings(s.replay);
-        j["replay"]["triangles"] = summary(s.replay_triangles);
+        j["replay"] = host::frameTimesJson(s.replay);
+        j["replay"]["triangles"] = summaryJson(s.replay_triangles);
         const double flight_p95 = host::summarize(s.frames.column(&host::FrameTiming::frame_ms)).p95;
         const double replay_p95 = host::summarize(s.replay.column(&host::FrameTiming::frame_ms)).p95;
         j["replay"]["flight_over_replay_p95"] = replay_p95 > 0.0 ? flight_p95 / replay_p95 : 0.0;

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "terrasynth_editor/edit_worker.h"
+#include "terrasynth_host/frame_stats_json.h"
 
 namespace terrasynth::editor {
 
@@ -85,28 +86,7 @@ host::FrameTimeSeries PhasedFrames::of(const std::string& phase) const {
     return out;
 }
 
-namespace {
-
-nlohmann::json summaryJson(const std::vector<double>& values) {
-    const host::SeriesSummary s = host::summarize(values);
-    return {{"count", s.count}, {"mean", s.mean}, {"median", s.median}, {"p95", s.p95}, {"max", s.max}};
-}
-
-nlohmann::json framesJson(const host::FrameTimeSeries& f) {
-    using T = host::FrameTiming;
-    return {{"frame_ms", summaryJson(f.column(&T::frame_ms))},
-            {"main_thread_ms", summaryJson(f.mainThread())},
-            {"gl_ms", summaryJson(f.gl())},
-            {"events_ms", summaryJson(f.column(&T::events_ms))},
-            {"app_ms", summaryJson(f.column(&T::app_ms))},
-            {"update_ms", summaryJson(f.column(&T::update_ms))},
-            {"cull_ms", summaryJson(f.column(&T::cull_ms))},
-            {"draw_ms", summaryJson(f.column(&T::draw_ms))},
-            {"overlay_ms", summaryJson(f.column(&T::overlay_ms))},
-            {"swap_ms", summaryJson(f.column(&T::swap_ms))}};
-}
-
-}  // namespace
+using host::summaryJson;
 
 std::string statsJson(const EditorStats& st) {
     nlohmann::json j;
@@ -138,7 +118,7 @@ std::string statsJson(const EditorStats& st) {
         std::vector<std::string> phases;
         for (const auto& [p, t] : st.frames->frames)
             if (std::find(phases.begin(), phases.end(), p) == phases.end()) phases.push_back(p);
-        for (const std::string& p : phases) frames[p] = framesJson(st.frames->of(p));
+        for (const std::string& p : phases) frames[p] = host::frameTimesJson(st.frames->of(p));
     }
     j["frames"] = frames;
     j["tiles"] = {{"edits", st.tiles.edits},         {"touching_changed_window", st.tiles.touching},

@@ -38,7 +38,11 @@ bool adjacent(const CourseSamples& c, size_t i, size_t j) {
 CrossingSearch findCrossings(const std::vector<const CourseSamples*>& courses) {
     CrossingSearch result;
     std::unordered_map<int64_t, std::vector<SegmentRef>> cells;
-    auto key = [](int64_t cx, int64_t cy) { return (cx << 32) ^ (cy & 0xffffffff); };
+    // Shifted as unsigned: cells left of or above the origin have negative indices (a left shift of
+    // a negative value is undefined; found by fuzzing).
+    auto key = [](int64_t cx, int64_t cy) {
+        return static_cast<int64_t>((static_cast<uint64_t>(cx) << 32) ^ (static_cast<uint64_t>(cy) & 0xffffffffu));
+    };
     for (size_t k = 0; k < courses.size(); ++k) {
         const CourseSamples& c = *courses[k];
         for (size_t i = 0; i < c.segments(); ++i) {
