@@ -6,11 +6,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "command_registry.h"
 #include "outputs.h"
+#include "terrasynth/curve_course.h"
 #include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/terrain.h"
@@ -61,12 +63,24 @@ Status stageSourcesMap(FileTransaction& transaction, const std::string& path, co
     return transaction.stage(sidecarOf(path), jsonText(side, 1) + "\n");
 }
 
-// How close each point constraint's site in the window came to its height (s5.1), so a user can
-// check a project from the command line.
-void reportPointSites(const Terrain& terrain, const PixelWindow& window, const Heightfield& heights) {
+// How close each point constraint's site and each curve's course in the window came to their
+// heights (s5.1), so a user can check a project from the command line.
+void reportHeldConstraints(const Terrain& terrain, const PixelWindow& window, const Heightfield& heights) {
     const auto& constraints = terrain.project().synthesis.constraints;
     if (!constraints) return;
     const HeightRange range = heightRange(heights);
+    const double relief = std::max(1e-3f, range.max - range.min);
+    for (size_t i = 0; i < constraints->curves.size(); ++i) {
+        const CurveHold hold = measureCurveHold(heights, window.x, window.y, constraints->curves, i, heights.meters_per_pixel_x);
+        std::vector<float> miss = hold.height_error_m;
+        if (miss.empty()) continue;
+        for (float& m : miss) m = std::fabs(m);
+        std::sort(miss.begin(), miss.end());
+        const float median = miss[miss.size() / 2], p95 = miss[std::min(miss.size() - 1, miss.size() * 95 / 100)];
+        std::printf("curve %zu: course %.1f m from its widgets' heights at the median (%.2f%% of the relief), %.1f m at the "
+                    "95th percentile (%.2f%%)\n",
+                    i, median, 100.0 * median / relief, p95, 100.0 * p95 / relief);
+    }
     for (size_t i = 0; i < constraints->points.size(); ++i) {
         const PointConstraint& p = constraints->points[i];
         const int64_t x = std::llround(p.x), y = std::llround(p.y);
@@ -157,7 +171,7 @@ void runCoherentEdit(const SynthArgs& args, const TerrainOptions& options, Terra
                 changed.width, changed.height, static_cast<long long>(changed.x - edited.extent().x),
                 static_cast<long long>(changed.y - edited.extent().y), moved, heights->heights.size(),
                 100.0 * moved / std::max<size_t>(1, heights->heights.size()));
-    reportPointSites(edited, edited.extent(), heights.value());
+    reportHeldConstraints(edited, edited.extent(), heights.value());
 }
 
 void runSynth(const SynthArgs& args) {
@@ -193,7 +207,7 @@ void runSynth(const SynthArgs& args) {
     std::printf("database + device ready in %.2f s, synthesis %.1f ms\n",
                 std::chrono::duration<double>(ready - start).count(),
                 std::chrono::duration<double, std::milli>(done - ready).count());
-    if (args.level == 0) reportPointSites(*terrain.value(), window, out->heights);
+    if (args.level == 0) reportHeldConstraints(*terrain.value(), window, out->heights);
 }
 
 void addSynthCommand(CLI::App& app) {

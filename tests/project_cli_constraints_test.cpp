@@ -197,7 +197,7 @@ TEST(ConstraintsCli, FrozenAndPastedPixelsAreBitIdenticalAcrossResynthesis) {
                 frozen_same += a.at(x, y) == b.at(x, y);
                 frozen_seed += a.at(x, y) == free.at(x, y);
             }
-            if (x > 251 && x < 299 && y > 61 && y < 99) {  // inside the pasted rectangle
+            if (x >= 256 && x <= 294 && y >= 66 && y <= 94) {  // inside the pasted rectangle, off its rim (6 px)
                 ++pasted;
                 pasted_same += a.at(x, y) == b.at(x, y);
             }
@@ -207,7 +207,7 @@ TEST(ConstraintsCli, FrozenAndPastedPixelsAreBitIdenticalAcrossResynthesis) {
     EXPECT_GT(frozen, 1000u);
     EXPECT_EQ(frozen_same, frozen);
     EXPECT_EQ(frozen_seed, frozen);
-    EXPECT_GT(pasted, 1500u);
+    EXPECT_GT(pasted, 1000u);
     EXPECT_EQ(pasted_same, pasted);
     // Something did change between the two edits, so the equality above is not vacuous.
     size_t differing = 0;

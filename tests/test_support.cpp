@@ -121,16 +121,25 @@ std::vector<std::string> filesUnder(const std::string& dir) {
 namespace terrasynth::test {
 std::string defaultDatabasePath() { return env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + std::string("/default.tsdb"); }
 
+namespace {
+std::shared_ptr<const ExemplarDatabase> cachedDatabase(const std::string& inputs, const std::string& cache) {
+    auto loaded = loadOrBuildDatabase({inputs}, DatabaseBuildOptions{}, cache);
+    if (!loaded) {
+        ADD_FAILURE() << loaded.message();
+        return nullptr;
+    }
+    return loaded.value();
+}
+}  // namespace
+
 std::shared_ptr<const ExemplarDatabase> defaultDatabase() {
-    static std::shared_ptr<const ExemplarDatabase> db = [] {
-        const std::string cache = defaultDatabasePath();
-        auto loaded = loadOrBuildDatabase({dataDir() + "/exemplars"}, DatabaseBuildOptions{}, cache);
-        if (!loaded) {
-            ADD_FAILURE() << loaded.message();
-            return std::shared_ptr<const ExemplarDatabase>();
-        }
-        return loaded.value();
-    }();
+    static std::shared_ptr<const ExemplarDatabase> db = cachedDatabase(dataDir() + "/exemplars", defaultDatabasePath());
+    return db;
+}
+
+std::shared_ptr<const ExemplarDatabase> sharedDatabase() {
+    static std::shared_ptr<const ExemplarDatabase> db =
+        cachedDatabase(sharedExemplarsDir(), env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + std::string("/shared.tsdb"));
     return db;
 }
 }  // namespace terrasynth::test

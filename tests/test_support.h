@@ -65,4 +65,7 @@ namespace terrasynth::test {
 std::shared_ptr<const ExemplarDatabase> defaultDatabase();
 // Where defaultDatabase() keeps its cache file (valid once defaultDatabase() has been called).
 std::string defaultDatabasePath();
+// The database of all shared exemplars (../shared/exemplars), built once and cached the same way
+// (<build>/test_tmp/shared.tsdb).
+std::shared_ptr<const ExemplarDatabase> sharedDatabase();
 }  // namespace terrasynth::test

@@ -2,7 +2,9 @@
 //
 // Point and curve constraints (s5.1, eq. 8-9) and type painting (s5.2) act inside the correction
 // kernel, never as a post-hoc deformation, and are disabled on the finest two levels as in the
-// paper; freeze and pastes (s5.3) are driven through coherent re-synthesis (incremental.h).
+// paper, but for the geometric constraints' own pixels when their heights are held
+// (SynthesisParams::hold_on_free_levels); freeze and pastes (s5.3) are driven through coherent
+// re-synthesis (incremental.h).
 // Coordinates are global pixels of level 0 (the project's grid); heights in metres.
 #pragma once
 
@@ -26,12 +28,21 @@ struct PointConstraint {
     // although the finest levels are unconstrained (set by liftPointConstraints in synthesizer.h;
     // not read from projects). 0 = the paper's plain target.
     float lift_m = 0.0f;
+    // Metres per metre added to the target plane's rise towards the east and the south within the
+    // site's 7x7 pixels (fading out by twice that distance), so the slope seen over the site's own
+    // pixels holds too (set by liftPointConstraints when the free levels hold the site; not read
+    // from projects). 0 = none.
+    float tilt_east = 0.0f, tilt_south = 0.0f;
 
-    // Equal in everything the user sets (the lift excluded).
+    // Equal in everything the user sets (the lifts excluded).
     bool samePlacement(const PointConstraint& o) const {
         return x == o.x && y == o.y && height_m == o.height_m && slope_direction_deg == o.slope_direction_deg &&
                slope_angle_deg == o.slope_angle_deg && radius_px == o.radius_px;
     }
+    bool sameLifts(const PointConstraint& o) const {
+        return lift_m == o.lift_m && tilt_east == o.tilt_east && tilt_south == o.tilt_south;
+    }
+    void takeLifts(const PointConstraint& o) { lift_m = o.lift_m, tilt_east = o.tilt_east, tilt_south = o.tilt_south; }
 };
 
 // A widget on a curve constraint (s3, s5.1): properties at arc-length parameter t of the course.
@@ -52,6 +63,12 @@ struct CurveConstraint {
     std::vector<std::pair<double, double>> course;
     bool spline = true;
     std::vector<CurveWidget> widgets;  // at least one; sorted by t
+    // Lift profile: metres added to the course's height (and so to the whole target across the
+    // reach) on the constrained levels, so the finished course lands on the widgets' heights
+    // although the finest levels are free. Values at n >= 2 stations evenly spaced in t
+    // (t = k / (n - 1)), linear in between; set by liftCurveConstraints (synthesizer.h), not read
+    // from projects. Empty = the paper's plain targets.
+    std::vector<float> lift_m;
 };
 
 // Paper defaults of eq. 8: tolerance slope s and outer slope lambda of phi_d.
@@ -121,7 +138,7 @@ Result<SynthesisConstraints> parseConstraints(const std::string& constraints_jso
 // with type painting and the freeze brush as 8-bit mask PNGs ("<mask_stem>.types.png" with a palette
 // naming type id + 1, "<mask_stem>.freeze.png" with 255 = frozen) that the caller writes beside the
 // project, so parseConstraints(constraintsToJson(c).json) == c up to the last bit of coordinates that
-// are not whole pixels. Point lifts (lift_m) are not part of a project and are not written.
+// are not whole pixels. Point and curve lifts (lift_m) are not part of a project and are not written.
 // Errors: a type or exemplar index the database does not have.
 struct ConstraintsJson {
     std::string json;  // the "constraints" object, compact JSON text

@@ -25,8 +25,8 @@ namespace detail {
 class TileJournal;
 }
 
-// The level-0 pixels of `extent` (row-major, 1 = inside) that a paste's target polygon covers:
-// the pixels a paste freezes.
+// The level-0 pixels of `extent` (row-major, 1 = frozen) that a paste freezes: those whose centres
+// lie inside its target polygon, at least IncrementalTerrain::kPasteBlendPx from its edge.
 std::vector<uint8_t> pasteTargetMask(const PasteConstraint& paste, const PixelWindow& extent);
 
 class IncrementalTerrain {
@@ -41,11 +41,18 @@ public:
     const SynthesisParams& params() const { return params_; }
     // Pixels of the coherent band kept around an edit's rectangle (level-0 pixels).
     static constexpr int kCoherentBand = 32;
+    // A paste's rim: its pixels closer than this to the target polygon's edge are written but not
+    // frozen, and re-synthesized Free with the band around the paste, so the paste and its
+    // surroundings meet without a step (measured: docs/project-format.md, `constraints.pastes`).
+    static constexpr int kPasteBlendPx = 6;
 
     // Applies new constraints. `changed` is the level-0 rectangle (global pixels) the change can
     // affect. Re-synthesizes the affected part and merges it into heights() and the history.
     // Point constraints whose site lies in `changed` are lifted first (liftPointConstraints, with
-    // this update's coherence) so their sites land on their heights; see holdPointHeights.
+    // this update's coherence) so their sites land on their heights, then the stations of curve
+    // lift profiles that lie in `changed` (liftCurveConstraints); see holdPointHeights. A curve
+    // given without a lift profile takes the current one of a curve with the same course, so an
+    // unchanged curve keeps its lift and an edited one starts its search from it.
     Status update(std::shared_ptr<const SynthesisConstraints> constraints, const PixelWindow& changed);
     // What an edit from the current constraints to `next` manipulates (s5.3: W = 1 inside the
     // manipulated constraints' reach): the discs of points and the reach bands of curves that are in
@@ -61,8 +68,14 @@ public:
     Status applyEdit(std::shared_ptr<const SynthesisConstraints> next, PixelWindow* changed = nullptr);
     // Copy-paste (s5.3, fig. 8): the polygon `source` (level-0 pixels of the terrain's global grid,
     // or of exemplar `exemplar` when >= 0) is moved by (dx, dy) pixels and raised by
-    // `height_offset_m`. The pasted coordinates are written for every level and pass and frozen, and
-    // a Free band of kCoherentBand pixels around the target lets the surroundings blend in.
+    // `height_offset_m`. The pasted coordinates are written for every pass of level 0 and frozen but
+    // for a rim of kPasteBlendPx, and for every pass of the coarser levels inside that rim; a Free
+    // band of kCoherentBand pixels around the target (with the rim) lets the surroundings blend in. An
+    // exemplar paste needs its polygon inside the exemplar at level 0 only (its pixel centres in the
+    // exemplar as resampled to the database spacing): the level-0 pixels are exactly the exemplar's
+    // heights + offset; on coarser levels, where a small exemplar may be narrower than the polygon,
+    // coordinates are mirrored into the exemplar's interior, or where it has none the synthesized
+    // coarse terrain under the paste stays.
     using Paste = PasteConstraint;
     Status paste(const Paste& paste);
     // Freeze brush: marks level-0 pixels (global grid, mask value != 0 and != TypePaint::kUnpainted)
@@ -117,7 +130,8 @@ public:
         params_.constraints = std::move(constraints);
     }
 
-    // Whether update() lifts point constraints (default true); false = the paper's plain targets.
+    // Whether update() lifts point and curve constraints (default true); false = the paper's plain
+    // targets.
     void holdPointHeights(bool hold) { hold_point_heights_ = hold; }
 
     // Pixels re-synthesized by the last update (output window only), for benchmarks.

@@ -64,6 +64,12 @@ struct SynthesisParams {
     // (default 2) so they do not look intrusive; point sites still land on their heights when the
     // points are lifted (liftPointConstraints below).
     int first_constrained_level = kFirstConstrainedLevel;
+    // Hold the geometric constraints' own pixels on the free finest levels: a curve's course (the
+    // pixels next to it) and a point's site (its 7x7 pixels) are still pulled towards their targets
+    // with phi_d there, everything around them stays free. With the lifts below this makes finished
+    // courses land on their widgets' heights and sites on their slopes (docs/curves.md). Projects
+    // set it with hold_point_heights; false = the paper's free finest levels.
+    bool hold_on_free_levels = false;
     // Coherence (s5.3): the previous results are offered as an extra candidate whose cost is
     // multiplied by W; frozen pixels keep their previous S and V exactly. With unchanged inputs the
     // result is bit-identical to the previous one. `coherence` null = Coherent everywhere.
@@ -127,6 +133,10 @@ protected:
 // finished level-0 height at each site is within tolerance_m of height_m, found by synthesizing a
 // 2x2 window at each site (equal to the full synthesis, see above) up to max_rounds times and
 // correcting the lift by the residual; if the tolerance is not reached, the best round is kept.
+// With hold_on_free_levels the slope is held over the site's own 7x7 pixels too (points asked at
+// 5 degrees or more): the tilts (PointConstraint::tilt_east/south) are searched the same way until
+// the plane fitted over the finished 7x7 pixels rises within 10% of the asked rise (measured: from
+// 10 degrees up, direction within 15 degrees, docs/curves.md).
 // Pass the same params (coherence, history) as the synthesis that will use the result; existing
 // lifts are the starting point, so re-lifting after a small edit usually takes one or two rounds.
 // Cost: per round, the sites are synthesized in windows grouped by a cost model (one window where
@@ -142,5 +152,38 @@ struct PointLiftOptions {
 Result<std::shared_ptr<const SynthesisConstraints>> liftPointConstraints(Synthesizer& synthesizer,
                                                                          const SynthesisParams& params,
                                                                          const PointLiftOptions& options = {});
+
+// Curve heights that hold, the curve equivalent of liftPointConstraints. Every curve gets a lift
+// profile (CurveConstraint::lift_m, stations about station_spacing_px apart along the course) so
+// the finished level-0 heights along the course land on the widgets' heights (junctions pinned,
+// terrasynth/curve_course.h): each station's residual is the mean of the finished course's
+// residuals around it (weighted like the linear interpolation between stations), measured by
+// synthesizing small windows along the course (equal to the full synthesis), and each station is
+// searched like a point's lift. What is left is the detail of the free finest levels, which the lift
+// cannot follow (docs/curves.md: measured figures). The round with the smallest mean |residual|
+// along the moving part of the courses is kept; when that is the first round and the lifts kept
+// their station counts, the given constraints are returned (the same pointer). Existing lift
+// profiles are the starting point (resampled to the station count). Pass the same params
+// (coherence, history, point lifts) as the synthesis that will use the result.
+// Cost: per round, windows of 64 px of course plus the synthesis margins along every moving course
+// (about a quarter of a synthesis of the courses' bounding boxes). Errors: those of synthesize().
+struct CurveLiftOptions {
+    // Stop once the median |finished - asked| along the moving courses is within this (metres);
+    // 0 = search max_rounds.
+    float tolerance_m = 0.0f;
+    int max_rounds = 6;               // >= 1; 1 only measures
+    double station_spacing_px = 8.0;  // > 0, level-0 pixels of arc length between stations
+    // Lift only the stations that lie in this level-0 window (an edit's area); the others keep
+    // their lift. Unset = all stations.
+    std::optional<PixelWindow> stations_within;
+    // Finished level-0 heights already synthesized with `params` (an edit's window; pixel (0, 0) is
+    // global pixel (measured_x, measured_y)): the first round reads the course from them where they
+    // hold it instead of synthesizing. Not owned; may be null.
+    const Heightfield* measured = nullptr;
+    int64_t measured_x = 0, measured_y = 0;
+};
+Result<std::shared_ptr<const SynthesisConstraints>> liftCurveConstraints(Synthesizer& synthesizer,
+                                                                         const SynthesisParams& params,
+                                                                         const CurveLiftOptions& options = {});
 
 }  // namespace terrasynth

@@ -65,8 +65,11 @@ std::shared_ptr<const SynthesisConstraints> EditSession::Impl::shaping() const {
 
 void EditSession::Impl::syncLifts() {
     const auto& current = terrain->params().constraints;
-    if (!current || current->points.size() != lists.points.size()) return;
-    for (size_t i = 0; i < lists.points.size(); ++i) lists.points[i].lift_m = current->points[i].lift_m;
+    if (!current) return;
+    if (current->points.size() == lists.points.size())
+        for (size_t i = 0; i < lists.points.size(); ++i) lists.points[i].takeLifts(current->points[i]);
+    if (current->curves.size() == lists.curves.size())
+        for (size_t i = 0; i < lists.curves.size(); ++i) lists.curves[i].lift_m = current->curves[i].lift_m;
 }
 
 Status EditSession::Impl::restoreTerrainConstraints() {

@@ -131,7 +131,7 @@ Result<PixelWindow> EditSession::addPoint(const PointConstraint& point, EditId* 
     const EditId new_id = s.newId();
     auto changed = s.edit(true, false, [&] {
         PointConstraint p = point;
-        p.lift_m = 0.0f;
+        p.takeLifts(PointConstraint());
         s.lists.points.push_back(p);
         s.lists.point_ids.push_back(new_id);
         return s.terrain->applyEdit(s.shaping());
@@ -147,9 +147,9 @@ Result<PixelWindow> EditSession::setPoint(EditId id, const PointConstraint& poin
     if (Status c = checkPoint(point, s.extent); !c) return c;
     return s.edit(true, false, [&] {
         PointConstraint& p = s.lists.points[*i];
-        const float lift = p.lift_m;  // the search for the new lift starts from the old one
+        const PointConstraint before = p;  // the search for the new lifts starts from the old ones
         p = point;
-        p.lift_m = lift;
+        p.takeLifts(before);
         return s.terrain->applyEdit(s.shaping());
     });
 }
@@ -361,10 +361,10 @@ Result<PixelWindow> EditSession::setConstraints(const SynthesisConstraints& next
         std::vector<bool> taken(s.lists.points.size(), false);
         for (const PointConstraint& p : next.points) {
             PointConstraint q = p;
-            q.lift_m = 0.0f;
+            q.takeLifts(PointConstraint());
             EditId id = 0;
             for (size_t k = 0; k < s.lists.points.size() && !id; ++k)
-                if (!taken[k] && s.lists.points[k].samePlacement(p)) taken[k] = true, q.lift_m = s.lists.points[k].lift_m,
+                if (!taken[k] && s.lists.points[k].samePlacement(p)) taken[k] = true, q.takeLifts(s.lists.points[k]),
                                                                      id = s.lists.point_ids[k];
             lists.points.push_back(q);
             lists.point_ids.push_back(id ? id : s.newId());

@@ -95,7 +95,7 @@ struct EditSession::Impl {
     SynthesisConstraints fullConstraints() const;  // lists + planes, as the project holds them
     std::shared_ptr<const SynthesisConstraints> shaping() const;  // what the kernels read
     bool anyPainted() const;
-    void syncLifts();  // lift_m of the points from the terrain's constraints
+    void syncLifts();  // the points' and curves' lifts from the terrain's constraints
     std::vector<uint8_t> frozenMask(const std::vector<size_t>& skip_pastes = {}) const;
     // Painting the planes, recorded in planes_journal.
     void paintPlane(int plane, const std::vector<std::pair<double, double>>& stroke, double radius, uint8_t value);

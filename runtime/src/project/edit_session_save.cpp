@@ -26,13 +26,6 @@ Result<ConstraintsJson> canonical(const ConstraintsJson& written, const Exemplar
     return constraintsToJson(*parsed, db, e.x, e.y, e.width, e.height, "canonical");
 }
 
-std::vector<float> liftsOf(const SynthesisConstraints* c) {
-    std::vector<float> lifts;
-    if (c)
-        for (const PointConstraint& p : c->points) lifts.push_back(p.lift_m);
-    return lifts;
-}
-
 }  // namespace
 
 Status EditSession::save(const std::string& path) {
@@ -64,13 +57,13 @@ Status EditSession::save(const std::string& path) {
     sidecar.heights = s.terrain->heights().heights;
     sidecar.frozen = s.terrain->frozenMask();
     sidecar.history = s.terrain->history();
-    sidecar.lifts = liftsOf(&current);
+    sidecar.lifts = project::liftsOf(&current);
     const SynthesisConstraints* reference = s.world->reference().constraints.get();
     auto reference_json = constraintsToJson(reference ? *reference : SynthesisConstraints(), *s.db, s.extent.x, s.extent.y,
                                             s.extent.width, s.extent.height, "reference");
     if (!reference_json) return reference_json.status().withContext(path);
     sidecar.reference = std::move(reference_json.value());
-    sidecar.reference_lifts = liftsOf(reference);
+    sidecar.reference_lifts = project::liftsOf(reference);
 
     FileTransaction files;
     for (const ConstraintsJson::Mask& mask : written->masks) {
@@ -119,11 +112,12 @@ Result<bool> EditSession::Impl::adoptSidecar() {
                                                  synth::masksFrom(sidecar->reference), *db, extent.x, extent.y,
                                                  extent.width, extent.height);
     if (!reference) return reject("hold an unreadable reference (" + reference.message() + ")");
-    if (sidecar->lifts.size() != lists.points.size() || sidecar->reference_lifts.size() != reference->points.size())
-        return reject("hold lifts for other points");
-    for (size_t i = 0; i < lists.points.size(); ++i) lists.points[i].lift_m = sidecar->lifts[i];
-    for (size_t i = 0; i < reference->points.size(); ++i) reference->points[i].lift_m = sidecar->reference_lifts[i];
-    SynthesisParams params = project.synthesis;
+    EditLists lifted = lists;
+    if (!project::applyLifts(sidecar->lifts, lifted.points, lifted.curves) ||
+        !project::applyLifts(sidecar->reference_lifts, reference->points, reference->curves))
+        return reject("hold lifts for other points or curves");
+    lists = std::move(lifted);
+    SynthesisParams params = project::synthesisOf(project);
     params.constraints = shaping();
     Heightfield heights(extent.width, extent.height, db->meters_per_pixel);
     heights.heights = std::move(sidecar->heights);
@@ -131,7 +125,7 @@ Result<bool> EditSession::Impl::adoptSidecar() {
                                                 std::move(sidecar->history));
     if (!restored) return reject("do not fit the project (" + restored.message() + ")");
     restored->holdPointHeights(project.hold_point_heights);
-    SynthesisParams reference_params = project.synthesis;
+    SynthesisParams reference_params = project::synthesisOf(project);
     reference_params.constraints.reset();
     if (!reference->empty()) reference_params.constraints = std::make_shared<const SynthesisConstraints>(std::move(reference.value()));
     auto plain = synthesizer->synthesize(extent, reference_params, 0, false);

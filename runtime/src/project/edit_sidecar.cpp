@@ -83,6 +83,30 @@ Result<json> readHeader(const std::string& bytes, const std::string& path, size_
 
 }  // namespace
 
+ConstraintLifts liftsOf(const SynthesisConstraints* constraints) {
+    ConstraintLifts lifts;
+    if (!constraints) return lifts;
+    for (const PointConstraint& p : constraints->points) {
+        lifts.points.push_back(p.lift_m);
+        lifts.tilts.push_back({p.tilt_east, p.tilt_south});
+    }
+    for (const CurveConstraint& c : constraints->curves) lifts.curves.push_back(c.lift_m);
+    return lifts;
+}
+
+bool applyLifts(const ConstraintLifts& lifts, std::vector<PointConstraint>& points, std::vector<CurveConstraint>& curves) {
+    if (lifts.points.size() != points.size() || (!lifts.tilts.empty() && lifts.tilts.size() != points.size()) ||
+        (!lifts.curves.empty() && lifts.curves.size() != curves.size()))
+        return false;
+    for (size_t i = 0; i < points.size(); ++i) {
+        points[i].lift_m = lifts.points[i];
+        points[i].tilt_east = lifts.tilts.empty() ? 0.0f : lifts.tilts[i][0];
+        points[i].tilt_south = lifts.tilts.empty() ? 0.0f : lifts.tilts[i][1];
+    }
+    for (size_t i = 0; i < curves.size(); ++i) curves[i].lift_m = lifts.curves.empty() ? std::vector<float>() : lifts.curves[i];
+    return true;
+}
+
 std::string encodeEditSidecar(const EditSidecar& s) {
     json blobs = json::array();
     std::string body;
@@ -105,11 +129,15 @@ std::string encodeEditSidecar(const EditSidecar& s) {
     const json header = {{"format", "terrasynth-edited-heights"},
                          {"digest", hex(s.digest)},
                          {"extent", {s.extent.x, s.extent.y, s.extent.width, s.extent.height}},
-                         {"lifts", s.lifts},
+                         {"lifts", s.lifts.points},
+                         {"tilts", s.lifts.tilts},
+                         {"curve_lifts", s.lifts.curves},
                          {"history", history},
                          {"reference", {{"constraints", json::parse(s.reference.json)},
                                         {"masks", reference_masks},
-                                        {"lifts", s.reference_lifts}}},
+                                        {"lifts", s.reference_lifts.points},
+                                        {"tilts", s.reference_lifts.tilts},
+                                        {"curve_lifts", s.reference_lifts.curves}}},
                          {"blobs", blobs}};
     const std::string text = header.dump();
     std::string out(kMagic, sizeof kMagic);
@@ -156,8 +184,16 @@ Result<EditSidecar> decodeEditSidecar(const std::string& bytes, const std::strin
     s.extent = {extent[0].get<int64_t>(), extent[1].get<int64_t>(), static_cast<int>(width), static_cast<int>(height)};
     const size_t pixels = static_cast<size_t>(s.extent.width) * s.extent.height;
     try {
-        s.lifts = h.value("lifts", json::array()).get<std::vector<float>>();
-        s.reference_lifts = reference.value("lifts", json::array()).get<std::vector<float>>();
+        // Tilts and curve lifts came later: a sidecar without them has none.
+        auto readLifts = [](const json& from) {
+            ConstraintLifts lifts;
+            lifts.points = from.value("lifts", json::array()).get<std::vector<float>>();
+            lifts.tilts = from.value("tilts", json::array()).get<std::vector<std::array<float, 2>>>();
+            lifts.curves = from.value("curve_lifts", json::array()).get<std::vector<std::vector<float>>>();
+            return lifts;
+        };
+        s.lifts = readLifts(h);
+        s.reference_lifts = readLifts(reference);
         s.reference.json = reference.at("constraints").dump();
     } catch (const json::exception&) {
         return bad("lifts or reference");

@@ -4,13 +4,14 @@
 // constraints from scratch does not give what the designer saw. Saving writes, beside the .tsyn, what
 // the session had: the extent's synthesized heights (before the layer stack, which is re-applied on
 // opening: it is deterministic), the frozen mask, the synthesis history (so editing can continue
-// exactly), the point lifts, and the reference the world outside the extent is synthesized from. A
+// exactly), the point and curve lifts, and the reference the world outside the extent is synthesized from. A
 // digest of everything the heights depend on decides whether the file still belongs to its project.
 //
 // Layout (little-endian): "TSYNEDIT", u32 version, u64 header bytes, header JSON, the blobs the
 // header lists in order, u64 FNV-1a of everything before it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,6 +21,16 @@
 
 namespace terrasynth::project {
 
+// What a project does not hold of its constraints but their synthesis depends on: the lifts.
+struct ConstraintLifts {
+    std::vector<float> points;                // lift_m of each point, in order
+    std::vector<std::array<float, 2>> tilts;  // tilt_east, tilt_south of each point (empty: none)
+    std::vector<std::vector<float>> curves;   // lift profile of each curve (empty: none)
+};
+ConstraintLifts liftsOf(const SynthesisConstraints* constraints);
+// Gives the points and curves these lifts; false (nothing changed) when they are for others.
+bool applyLifts(const ConstraintLifts& lifts, std::vector<PointConstraint>& points, std::vector<CurveConstraint>& curves);
+
 struct EditSidecar {
     static constexpr uint32_t kVersion = 1;
     uint64_t digest = 0;
@@ -27,9 +38,9 @@ struct EditSidecar {
     std::vector<float> heights;         // synthesized extent before the layer stack, row-major
     std::vector<uint8_t> frozen;        // 1 = frozen (freeze brush and pastes)
     SynthesisHistory history;           // empty levels when not stored or not read
-    std::vector<float> lifts;           // lift_m of the project's points, in order
+    ConstraintLifts lifts;              // of the project's points and curves, in order
     ConstraintsJson reference;          // constraints the world outside the extent is synthesized with
-    std::vector<float> reference_lifts;
+    ConstraintLifts reference_lifts;
 };
 
 std::string encodeEditSidecar(const EditSidecar& sidecar);

@@ -9,9 +9,15 @@ Result<std::shared_ptr<const SynthesisConstraints>> projectConstraints(const Pro
     return std::make_shared<const SynthesisConstraints>(std::move(parsed.value()));
 }
 
+SynthesisParams synthesisOf(const Project& project) {
+    SynthesisParams params = project.synthesis;
+    params.hold_on_free_levels = project.hold_point_heights;
+    return params;
+}
+
 Result<SynthesisParams> referenceParams(Synthesizer& synthesizer, const Project& project,
                                         std::shared_ptr<const SynthesisConstraints> constraints) {
-    SynthesisParams params = project.synthesis;
+    SynthesisParams params = synthesisOf(project);
     params.constraints = std::move(constraints);
     params.previous.reset();
     params.coherence.reset();
@@ -19,6 +25,11 @@ Result<SynthesisParams> referenceParams(Synthesizer& synthesizer, const Project&
     if (project.hold_point_heights && params.constraints && !params.constraints->points.empty()) {
         auto lifted = liftPointConstraints(synthesizer, params);
         if (!lifted) return lifted.status().withContext(project.path + ": constraints.points");
+        params.constraints = std::move(lifted.value());
+    }
+    if (project.hold_point_heights && params.constraints && !params.constraints->curves.empty()) {
+        auto lifted = liftCurveConstraints(synthesizer, params);
+        if (!lifted) return lifted.status().withContext(project.path + ": constraints.curves");
         params.constraints = std::move(lifted.value());
     }
     return params;

@@ -13,8 +13,12 @@ namespace terrasynth::project {
 // the project file and the field.
 Result<std::shared_ptr<const SynthesisConstraints>> projectConstraints(const Project& project, const ExemplarDatabase& db);
 
-// The project's synthesis settings with `constraints`, points lifted once (s5.1, hold_point_heights)
-// so every window of the world synthesizes with the same targets: the reference synthesis.
+// The project's synthesis settings as every synthesis of it uses them: the free finest levels hold
+// the constraints' own pixels when the project holds their heights (hold_point_heights).
+SynthesisParams synthesisOf(const Project& project);
+
+// The project's synthesis settings with `constraints`, points and curves lifted once (s5.1,
+// hold_point_heights) so every window of the world synthesizes with the same targets: the reference synthesis.
 Result<SynthesisParams> referenceParams(Synthesizer& synthesizer, const Project& project,
                                         std::shared_ptr<const SynthesisConstraints> constraints);
 

@@ -102,19 +102,15 @@ Status Terrain::Impl::adoptSidecar(Synthesizer& synthesizer) {
     auto reference = synth::parseConstraintsJson(nlohmann::json::parse(sidecar->reference.json), synth::masksFrom(sidecar->reference),
                                                  db, extent.x, extent.y, extent.width, extent.height);
     if (!reference) return reject("hold an unreadable reference (" + reference.message() + ")");
+    // The project's points and curves as the session left them (their lifts), and the reference it
+    // synthesized the world around the extent with.
     auto& current = project.synthesis.constraints;
-    const size_t points = current ? current->points.size() : 0;
-    if (sidecar->lifts.size() != points || sidecar->reference_lifts.size() != reference->points.size())
-        return reject("hold lifts for other points");
-    // The project's points as the session left them (their lifts), and the reference it synthesized
-    // the world around the extent with.
-    if (current) {
-        auto lifted = std::make_shared<SynthesisConstraints>(*current);
-        for (size_t i = 0; i < points; ++i) lifted->points[i].lift_m = sidecar->lifts[i];
-        current = lifted;
-    }
-    for (size_t i = 0; i < reference->points.size(); ++i) reference->points[i].lift_m = sidecar->reference_lifts[i];
-    SynthesisParams params = project.synthesis;
+    auto lifted = std::make_shared<SynthesisConstraints>(current ? *current : SynthesisConstraints());
+    if (!project::applyLifts(sidecar->lifts, lifted->points, lifted->curves) ||
+        !project::applyLifts(sidecar->reference_lifts, reference->points, reference->curves))
+        return reject("hold lifts for other points or curves");
+    if (current) current = lifted;
+    SynthesisParams params = project::synthesisOf(project);
     params.constraints.reset();
     if (!reference->empty()) params.constraints = std::make_shared<const SynthesisConstraints>(std::move(reference.value()));
     world = std::make_unique<project::WorldView>(pool, params);

@@ -9,11 +9,18 @@
 namespace terrasynth::synth {
 using core::levelSalt;
 
+namespace {
+double smoothstep(double a) {
+    a = std::clamp(a, 0.0, 1.0);
+    return a * a * (3.0 - 2.0 * a);
+}
+}  // namespace
+
 void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
-                     float sign, std::vector<float>& blend) {
+                     float sign, std::vector<float>& blend, double localisation_px) {
     const double cell = std::ldexp(1.0, level);
     // s5.1: the area of effect shrinks at finer levels, min(radius, 4 * 2^level) level-0 pixels.
-    const double reach = std::min<double>(point.radius_px, kPointLocalisation * cell);
+    const double reach = std::min<double>(point.radius_px, localisation_px > 0.0 ? localisation_px : kPointLocalisation * cell);
     // Level-i pixels whose centres ((p + 0.5) * cell - 0.5) can be within reach.
     const int x0 = std::max(region.x, static_cast<int>(std::floor((point.x - reach + 0.5) / cell - 0.5)));
     const int x1 = std::min(region.x + region.width - 1, static_cast<int>(std::ceil((point.x + reach + 0.5) / cell - 0.5)));
@@ -32,7 +39,11 @@ void accumulatePoint(const PointConstraint& point, int level, const LevelRegion&
             const double d = std::sqrt(ex * ex + ey * ey);
             if (d >= reach) continue;
             const double b = 1.0 / std::max(d, 0.5);
-            const double target = point.height_m + point.lift_m + (rise_east * ex + rise_south * ey) * meters_per_pixel0;
+            // The tilt lift holds the slope over the site's own pixels and fades out beyond them.
+            const double tilt = 1.0 - smoothstep((d - kSiteHalfWidthPx) / kSiteHalfWidthPx);
+            const double target = point.height_m + point.lift_m +
+                                  ((rise_east + tilt * point.tilt_east) * ex + (rise_south + tilt * point.tilt_south) * ey) *
+                                      meters_per_pixel0;
             float* sums = &blend[(static_cast<size_t>(gy - region.y) * region.width + (gx - region.x)) * 4];
             sums[0] += sign * static_cast<float>(b);
             sums[1] += sign * static_cast<float>(b * target);
@@ -41,23 +52,50 @@ void accumulatePoint(const PointConstraint& point, int level, const LevelRegion&
     }
 }
 
-LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
-                                     const LevelRegion& region, double meters_per_pixel0) {
+namespace {
+
+// Whether any pixel of 4-float blend sums got a constraint.
+bool anyBlend(const std::vector<float>& blend) {
+    for (size_t i = 0; i < blend.size(); i += 4)
+        if (blend[i] > 0.0f) return true;
+    return false;
+}
+
+void addCurveSums(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region, double meters_per_pixel0,
+                  bool held_free_level, std::vector<float>& blend) {
+    std::vector<float> sums(region.pixels() * 3, 0.0f);
+    accumulateCurves(curves, level, region, meters_per_pixel0, sums, held_free_level);
+    for (size_t i = 0; i < region.pixels(); ++i)
+        for (int k = 0; k < 3; ++k) blend[i * 4 + k] += sums[i * 3 + k];
+}
+
+// A free level with held own pixels (s5.1 leaves these levels free): the points' 7x7 sites, and the
+// curves held softly (curve_raster.h).
+LevelConstraints heldOwnPixels(const SynthesisConstraints& constraints, int level, const LevelRegion& region,
+                               double meters_per_pixel0) {
     LevelConstraints out;
-    if (!constraints || level < first_level) return out;
+    if (constraints.points.empty() && constraints.curves.empty()) return out;
+    out.blend.assign(region.pixels() * 4, 0.0f);
+    for (const PointConstraint& p : constraints.points)
+        accumulatePoint(p, level, region, meters_per_pixel0, 1.0f, out.blend, kSiteHalfWidthPx);
+    if (!constraints.curves.empty()) addCurveSums(constraints.curves, level, region, meters_per_pixel0, true, out.blend);
+    if (!anyBlend(out.blend)) out.blend.clear();
+    return out;
+}
+
+}  // namespace
+
+LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
+                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0) {
+    LevelConstraints out;
+    if (!constraints) return out;
+    if (level < first_level) return hold_free_levels ? heldOwnPixels(*constraints, level, region, meters_per_pixel0) : out;
     if (!constraints->points.empty() || !constraints->curves.empty()) {
         out.blend.assign(region.pixels() * 4, 0.0f);
         for (const PointConstraint& p : constraints->points)
             accumulatePoint(p, level, region, meters_per_pixel0, 1.0f, out.blend);
-        if (!constraints->curves.empty()) {
-            std::vector<float> sums(region.pixels() * 3, 0.0f);
-            accumulateCurves(constraints->curves, level, region, meters_per_pixel0, sums);
-            for (size_t i = 0; i < region.pixels(); ++i)
-                for (int k = 0; k < 3; ++k) out.blend[i * 4 + k] += sums[i * 3 + k];
-        }
-        bool any = false;
-        for (size_t i = 0; i < region.pixels() && !any; ++i) any = out.blend[i * 4] > 0.0f;
-        if (!any) out.blend.clear();
+        if (!constraints->curves.empty()) addCurveSums(constraints->curves, level, region, meters_per_pixel0, false, out.blend);
+        if (!anyBlend(out.blend)) out.blend.clear();
     }
     const TypePaint& paint = constraints->types;
     if (paint.empty()) return out;

@@ -15,7 +15,8 @@ struct LevelConstraints {
     // Per region pixel, 4 floats: the inverse-distance blend sums of s5.1 over every point and curve
     // constraint reaching it (sum b, sum b*h_t in metres, sum b*d in level-0 pixels, 0). Keeping
     // sums means one constraint can be subtracted, changed and added back without re-evaluating the
-    // others. Empty when no constraint reaches the region, and on the finest two levels.
+    // others. Empty when no constraint reaches the region, and on the finest two levels unless
+    // they hold the constraints' own pixels (constraintsForLevel).
     std::vector<float> blend;
     // One mask per region pixel (bit t = type t allowed; 0 = any type). Empty when nothing painted
     // reaches the region or on the finest two levels. R^i is the union of the painted level-0 types
@@ -24,13 +25,20 @@ struct LevelConstraints {
     std::vector<uint32_t> target_sets;
 };
 
-// Nothing below `first_level` (SynthesisParams::first_constrained_level).
+// Below `first_level` (SynthesisParams::first_constrained_level) nothing, or with `hold_free_levels`
+// (SynthesisParams::hold_on_free_levels) the constraints' own pixels only: the points' 7x7 sites,
+// and the curves within the usual localisation but held softly (accumulateCurve, curve_raster.h).
 LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
-                                     const LevelRegion& region, double meters_per_pixel0);
+                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0);
+
+// Half the width of a point's own 7x7 pixels (level-0 pixels from the site): held on the free levels
+// so the slope seen over them holds.
+constexpr double kSiteHalfWidthPx = 3.5;
 
 // Adds (sign +1) or removes (-1) one point constraint's terms to/from 4-float blend sums of `region`.
+// `localisation_px` > 0 replaces the per-level localisation kPointLocalisation * 2^level.
 void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
-                     float sign, std::vector<float>& blend);
+                     float sign, std::vector<float>& blend, double localisation_px = 0.0);
 
 // Flattened per-type seed lists of a level: offsets/counts per type (up to kMaxPaintableTypes).
 struct SeedTable {

@@ -7,7 +7,6 @@
 #include "core/json_reader.h"
 #include "synth/curve_geometry.h"
 #include "synth/curve_junctions.h"
-#include "synth/curve_profile.h"
 #include "synth/curve_raster.h"
 
 namespace terrasynth::synth {
@@ -48,18 +47,28 @@ PreparedCourses prepareCourses(const std::vector<CurveConstraint>& curves) {
 
 }  // namespace
 
+PinnedCurves pinCurves(const std::vector<CurveConstraint>& curves) {
+    // Courses are cached by their points (the distance field's geometry changes only when the
+    // horizontal shape does); widgets, lifts and junction heights are cheap and rebuilt per call.
+    const PreparedCourses prepared = prepareCourses(curves);
+    PinnedCurves pinned;
+    pinned.courses = prepared.courses;
+    for (size_t i = 0; i < curves.size(); ++i) {
+        pinned.profiles.emplace_back(curves[i].widgets, prepared.courses[i]->length);
+        pinned.profiles.back().setLift(curves[i].lift_m);
+    }
+    pinJunctions(prepared.crossings->crossings, pinned.profiles);
+    return pinned;
+}
+
 void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region,
-                      double meters_per_pixel0, std::vector<float>& sums) {
+                      double meters_per_pixel0, std::vector<float>& sums, bool held_free_level) {
     TERRASYNTH_REQUIRE(sums.size() == 3 * region.pixels(), "accumulateCurves: sums must hold 3 floats per region pixel");
     if (curves.empty()) return;
-    // Courses are cached by their points (the distance field's geometry changes only when the
-    // horizontal shape does); widgets and junction heights are cheap and rebuilt per call.
-    const PreparedCourses prepared = prepareCourses(curves);
-    std::vector<CurveProfile> profiles;
-    for (size_t i = 0; i < curves.size(); ++i) profiles.emplace_back(curves[i].widgets, prepared.courses[i]->length);
-    pinJunctions(prepared.crossings->crossings, profiles);
+    const PinnedCurves pinned = pinCurves(curves);
     for (size_t i = 0; i < curves.size(); ++i)
-        accumulateCurve(*prepared.courses[i], profiles[i], level, region, meters_per_pixel0, true, sums);
+        accumulateCurve(*pinned.courses[i], pinned.profiles[i], level, region, meters_per_pixel0, true, sums,
+                        held_free_level);
 }
 
 Status checkCurveLimits(const std::vector<CurveConstraint>& curves, const std::string& where) {

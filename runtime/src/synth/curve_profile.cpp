@@ -98,6 +98,15 @@ CurveProperties CurveProfile::at(double s) const {
     return p;
 }
 
+double CurveProfile::liftAt(double s) const {
+    if (lift_.empty()) return 0.0;
+    if (lift_.size() == 1) return lift_[0];
+    const double x = std::clamp(t(s), 0.0, 1.0) * static_cast<double>(lift_.size() - 1);
+    const size_t k = std::min(static_cast<size_t>(x), lift_.size() - 2);
+    const double u = x - static_cast<double>(k);
+    return lift_[k] + (static_cast<double>(lift_[k + 1]) - lift_[k]) * u;
+}
+
 bool CurveProfile::widgetNear(double s, double snap_px, double* height) const {
     // Widgets are sorted by t, so w.t * length - s grows along them: the first widget not more than
     // snap_px before s is the only one that can be (and the first that is) within snap_px.

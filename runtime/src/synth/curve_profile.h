@@ -44,6 +44,11 @@ public:
     double heightAt(double s) const { return widgetsAt(t(s)).height; }
     bool widgetNear(double s, double snap_px, double* height) const;
 
+    // The curve's lift profile (CurveConstraint::lift_m): metres added to the target on the
+    // constrained levels at s, linear between stations evenly spaced in t; 0 without one.
+    void setLift(const std::vector<float>& lift) { lift_ = lift; }
+    double liftAt(double s) const;
+
     // Replaces the junction pins; at() sums their corrections in this order. O(n log n).
     void setPins(std::vector<JunctionPin> pins);
     const std::vector<JunctionPin>& pins() const { return pins_; }
@@ -54,6 +59,7 @@ private:
     std::vector<CurveWidget> widgets_;
     std::vector<CurveProperties> values_, tangents_;  // per widget, tangents per unit t
     std::vector<JunctionPin> pins_;
+    std::vector<float> lift_;
     // Per pin: the widgets' height at its arc length (what the pin corrects). The pins sorted by arc
     // length, so at() visits only those within reach: a long scribbled course has thousands.
     std::vector<double> pin_base_;

@@ -79,7 +79,8 @@ ClosestField closestField(const LevelCourse& c, const EnvelopeGrid& g, double ce
     return field;
 }
 
-// What a pixel attached to the course receives: side (or cap) reach and gradient, height at t.
+// What a pixel attached to the course receives: side (or cap) reach and gradient, height at t (with
+// the curve's lift).
 struct Attachment {
     double s = 0.0, reach = 0.0, gradient = 0.0, height = 0.0;
 };
@@ -93,7 +94,7 @@ Attachment attach(const LevelCourse& c, const CurveProfile& profile, size_t segm
     Attachment a;
     a.s = c.s[segment] + u * (c.s[segment + 1] - c.s[segment]);
     const CurveProperties p = profile.at(a.s);
-    a.height = p.height;
+    a.height = p.height + profile.liftAt(a.s);
     const double along = vx * tx + vy * ty, left = vx * lx + vy * ly;
     const bool start_cap = !c.closed && segment == 0 && u <= 0.0 && along < 0.0;
     const bool end_cap = !c.closed && segment + 1 == c.segments() && u >= 1.0 && along > 0.0;
@@ -133,7 +134,7 @@ EnvelopeSmoothing envelopeSmoothingForLevel(int level, double max_reach_px) {
 }
 
 void accumulateCurve(const CourseSamples& course, const CurveProfile& profile, int level, const LevelRegion& region,
-                     double meters_per_pixel0, bool smooth, std::vector<float>& sums) {
+                     double meters_per_pixel0, bool smooth, std::vector<float>& sums, bool held_free_level) {
     TERRASYNTH_REQUIRE(sums.size() == 3 * region.pixels(), "accumulateCurve: sums must hold 3 floats per region pixel");
     TERRASYNTH_REQUIRE(level >= 0 && level < 30, "accumulateCurve: level out of range");
     if (course.segments() == 0 || region.pixels() == 0) return;
@@ -186,11 +187,17 @@ void accumulateCurve(const CourseSamples& course, const CurveProfile& profile, i
             const Attachment a = attach(c, profile, static_cast<size_t>(field.segment[k]), field.u[k], qx, qy);
             const double d = std::sqrt(field.dist2[k]);
             const double b = 1.0 / std::max(d, 0.5);
-            const double target = a.height + a.gradient * d * meters_per_pixel0;
+            // Distance across the course the side gradient applies to: on a held free level the
+            // two side lines meet in a parabola (C1) instead of a crease.
+            const double floor_px = kHeldFloorCells * cell;
+            const double across = !held_free_level ? d : (d < floor_px ? 0.5 * d * d / floor_px : d - 0.5 * floor_px);
+            const double target = a.height + a.gradient * across * meters_per_pixel0;
             float* out = &sums[3 * (static_cast<size_t>(y - region.y) * region.width + (x - region.x))];
             out[0] += static_cast<float>(b);
             out[1] += static_cast<float>(b * target);
-            out[2] += static_cast<float>(b * d);
+            // phi_d's tolerance is s times the blended distance: widened on a held free level.
+            const double tolerance_px = held_free_level ? kHeldCourseToleranceM / kPointToleranceSlope : 0.0;
+            out[2] += static_cast<float>(b * (d + tolerance_px));
         }
 }
 

@@ -18,7 +18,15 @@ EnvelopeSmoothing envelopeSmoothingForLevel(int level, double max_reach_px);
 
 // Adds the curve's (b, b*h_t, b*d) to `sums` (3 floats per pixel of `region`), see curve_field.h.
 // `smooth` = false keeps the raw envelope d < reach(t(p)) of Figure 5a (for comparison in tests).
+// `held_free_level`: the level is one of the free finest levels and the course is held there
+// softly (SynthesisParams::hold_on_free_levels): the sides meet in a rounded floor kHeldFloorCells
+// level pixels wide instead of a crease, and phi_d's tolerance is widened by kHeldCourseToleranceM
+// (through the blend's distance term), so the free levels keep their own detail and only what
+// strays beyond it is pulled back.
 void accumulateCurve(const CourseSamples& course, const CurveProfile& profile, int level, const LevelRegion& region,
-                     double meters_per_pixel0, bool smooth, std::vector<float>& sums);
+                     double meters_per_pixel0, bool smooth, std::vector<float>& sums, bool held_free_level = false);
+
+constexpr double kHeldFloorCells = 2.0;
+constexpr double kHeldCourseToleranceM = 80.0;
 
 }  // namespace terrasynth::synth

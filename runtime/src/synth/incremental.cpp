@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <limits>
 
 #include "core/tile_journal.h"
 #include "synth/coherence_fields.h"
@@ -15,6 +16,10 @@
 
 namespace terrasynth {
 namespace {
+
+// An edit keeps the curves' lift profiles it starts from while the median miss along the edited
+// courses stays within this share of the extent's relief (the guarantee is 1%, docs/curves.md).
+constexpr float kCurveHoldMedian = 0.005f;
 
 // Copies the window's history into the extent's, level by level, pass by pass, by global position.
 // Only the window's valid part at each level (its region minus the margin) is trusted. `touching`
@@ -98,10 +103,11 @@ Result<IncrementalTerrain> IncrementalTerrain::restore(Synthesizer& synthesizer,
 
 namespace {
 
-bool samePoint(const PointConstraint& a, const PointConstraint& b) { return a.samePlacement(b) && a.lift_m == b.lift_m; }
+bool samePoint(const PointConstraint& a, const PointConstraint& b) { return a.samePlacement(b) && a.sameLifts(b); }
 
 bool sameCurve(const CurveConstraint& a, const CurveConstraint& b) {
-    if (a.course != b.course || a.spline != b.spline || a.widgets.size() != b.widgets.size()) return false;
+    if (a.course != b.course || a.spline != b.spline || a.widgets.size() != b.widgets.size() || a.lift_m != b.lift_m)
+        return false;
     for (size_t i = 0; i < a.widgets.size(); ++i) {
         const CurveWidget &u = a.widgets[i], &v = b.widgets[i];
         if (u.t != v.t || u.height_m != v.height_m || u.left_gradient != v.left_gradient ||
@@ -109,6 +115,28 @@ bool sameCurve(const CurveConstraint& a, const CurveConstraint& b) {
             return false;
     }
     return true;
+}
+
+// Curves given without a lift profile take the one of a current curve with the same course (the
+// first not yet taken): an unchanged curve keeps its lift, and an edited one starts its search there.
+std::shared_ptr<const SynthesisConstraints> adoptCurveLifts(std::shared_ptr<const SynthesisConstraints> next,
+                                                            const SynthesisConstraints* current) {
+    if (!next || !current || current->curves.empty()) return next;
+    std::vector<bool> taken(current->curves.size(), false);
+    std::shared_ptr<SynthesisConstraints> adopted;
+    for (size_t i = 0; i < next->curves.size(); ++i) {
+        const CurveConstraint& c = next->curves[i];
+        if (!c.lift_m.empty()) continue;
+        for (size_t k = 0; k < current->curves.size(); ++k) {
+            const CurveConstraint& d = current->curves[k];
+            if (taken[k] || d.lift_m.empty() || d.course != c.course || d.spline != c.spline) continue;
+            taken[k] = true;
+            if (!adopted) adopted = std::make_shared<SynthesisConstraints>(*next);
+            adopted->curves[i].lift_m = d.lift_m;
+            break;
+        }
+    }
+    return adopted ? adopted : next;
 }
 
 uint8_t paintedAt(const TypePaint& paint, int64_t x, int64_t y) {
@@ -119,9 +147,10 @@ uint8_t paintedAt(const TypePaint& paint, int64_t x, int64_t y) {
 
 }  // namespace
 
-IncrementalTerrain::EditArea IncrementalTerrain::areaAffectedBy(const SynthesisConstraints* next) const {
+IncrementalTerrain::EditArea IncrementalTerrain::areaAffectedBy(const SynthesisConstraints* next_raw) const {
     static const SynthesisConstraints kNone;
     const SynthesisConstraints& a = params_.constraints ? *params_.constraints : kNone;
+    const auto next = next_raw ? adoptCurveLifts(std::make_shared<const SynthesisConstraints>(*next_raw), &a) : nullptr;
     const SynthesisConstraints& b = next ? *next : kNone;
     EditArea area;
     area.mask.assign(static_cast<size_t>(extent_.width) * extent_.height, 0);
@@ -164,6 +193,7 @@ IncrementalTerrain::EditArea IncrementalTerrain::areaAffectedBy(const SynthesisC
 }
 
 Status IncrementalTerrain::applyEdit(std::shared_ptr<const SynthesisConstraints> next, PixelWindow* changed) {
+    next = adoptCurveLifts(std::move(next), params_.constraints.get());
     const EditArea area = areaAffectedBy(next.get());
     if (changed) *changed = area.box;
     if (area.box.width == 0) {
@@ -174,7 +204,8 @@ Status IncrementalTerrain::applyEdit(std::shared_ptr<const SynthesisConstraints>
 }
 
 Status IncrementalTerrain::update(std::shared_ptr<const SynthesisConstraints> constraints, const PixelWindow& changed) {
-    return resynthesize(changed, nullptr, std::move(constraints), hold_point_heights_);
+    return resynthesize(changed, nullptr, adoptCurveLifts(std::move(constraints), params_.constraints.get()),
+                        hold_point_heights_);
 }
 
 // Free inside `free_area` (or where `free_mask`, over the extent, is set), Coherent in a band around
@@ -214,6 +245,23 @@ Status IncrementalTerrain::resynthesize(const PixelWindow& free_area, const std:
     params.record_history = true;
     auto out = synthesizer_->synthesize(window, params, 0, false);
     if (!out) return out.status();
+    if (lift_points && params.constraints && !params.constraints->curves.empty()) {
+        // The curves' lift profiles (kept from before the edit) are searched further only when the
+        // edited courses miss their heights by more than kCurveHoldMedian of the relief: dragging a
+        // widget usually keeps them good, and then the edit costs one synthesis.
+        CurveLiftOptions lift;
+        lift.stations_within = free_area;
+        const HeightRange relief = heightRange(heights_);
+        lift.tolerance_m = kCurveHoldMedian * (relief.max - relief.min);
+        lift.measured = &out->heights, lift.measured_x = window.x, lift.measured_y = window.y;
+        auto lifted = liftCurveConstraints(*synthesizer_, params, lift);
+        if (!lifted) return lifted.status();
+        if (lifted.value() != params.constraints) {
+            params.constraints = std::move(lifted.value());
+            out = synthesizer_->synthesize(window, params, 0, false);
+            if (!out) return out.status();
+        }
+    }
     record(0, window.x - extent_.x, window.y - extent_.y, window.width, window.height);
     for (int y = 0; y < window.height; ++y)
         for (int x = 0; x < window.width; ++x)
@@ -258,11 +306,24 @@ PixelWindow polygonBox(const std::vector<std::pair<double, double>>& polygon, co
                             clip);
 }
 
+// Distance from (x, y) to the nearest edge of a closed polygon.
+double distanceToPolygon(const std::vector<std::pair<double, double>>& poly, double x, double y) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+        const auto [ax, ay] = poly[j];
+        const auto [bx, by] = poly[i];
+        const double ex = bx - ax, ey = by - ay, len2 = ex * ex + ey * ey;
+        const double u = len2 > 0.0 ? std::clamp(((x - ax) * ex + (y - ay) * ey) / len2, 0.0, 1.0) : 0.0;
+        best = std::min(best, std::hypot(x - ax - u * ex, y - ay - u * ey));
+    }
+    return best;
+}
+
 // Pixels of one history level whose centres (in level-0 coordinates) lie inside `polygon`, visited
 // row by row as (x, y, row-major index).
 template <class Visit>
 void forEachLevelPixelInside(const SynthesisHistory::Level& l, int level, const std::vector<std::pair<double, double>>& polygon,
-                             Visit&& visit) {
+                             Visit&& visit, double inset = 0.0) {
     const double cell = std::ldexp(1.0, level);
     const int64_t scale = int64_t(1) << level;
     const PixelWindow box = polygonBox(polygon, {l.x * scale, l.y * scale, static_cast<int>(l.width * scale),
@@ -275,22 +336,45 @@ void forEachLevelPixelInside(const SynthesisHistory::Level& l, int level, const 
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
             const double px = (l.x + x + 0.5) * cell - 0.5, py = (l.y + y + 0.5) * cell - 0.5;
-            if (insidePolygon(polygon, px, py)) visit(x, y, static_cast<size_t>(y) * l.width + x);
+            if (insidePolygon(polygon, px, py) && (inset <= 0.0 || distanceToPolygon(polygon, px, py) >= inset))
+                visit(x, y, static_cast<size_t>(y) * l.width + x);
         }
+}
+
+// Level coordinate v of an exemplar `size` pixels wide, mirrored (about its interior's edges) into
+// the interior [kInteriorMargin, size - 1 - kInteriorMargin]; -1 when that is empty.
+long mirroredIntoInterior(long v, int size) {
+    const long lo = kInteriorMargin, hi = static_cast<long>(size) - 1 - kInteriorMargin;
+    if (hi < lo) return -1;
+    if (hi == lo) return lo;
+    const long period = 2 * (hi - lo);
+    const long u = ((v - lo) % period + period) % period;
+    return u <= hi - lo ? lo + u : hi - (u - (hi - lo));
+}
+
+}  // namespace
+
+namespace {
+
+// Level-0 pixels of `extent` whose centres lie inside `polygon`, at least `inset` from its edges.
+std::vector<uint8_t> polygonMask(const std::vector<std::pair<double, double>>& polygon, const PixelWindow& extent,
+                                 double inset) {
+    std::vector<uint8_t> mask(static_cast<size_t>(extent.width) * extent.height, 0);
+    if (polygon.size() < 3) return mask;
+    const PixelWindow box = polygonBox(polygon, extent);
+    for (int64_t y = box.y; y < box.y + box.height; ++y)
+        for (int64_t x = box.x; x < box.x + box.width; ++x) {
+            const double px = static_cast<double>(x), py = static_cast<double>(y);
+            if (insidePolygon(polygon, px, py) && (inset <= 0.0 || distanceToPolygon(polygon, px, py) >= inset))
+                mask[static_cast<size_t>(y - extent.y) * extent.width + (x - extent.x)] = 1;
+        }
+    return mask;
 }
 
 }  // namespace
 
 std::vector<uint8_t> pasteTargetMask(const PasteConstraint& paste, const PixelWindow& extent) {
-    std::vector<uint8_t> mask(static_cast<size_t>(extent.width) * extent.height, 0);
-    if (paste.source.size() < 3) return mask;
-    const auto target = targetPolygon(paste);
-    const PixelWindow box = polygonBox(target, extent);
-    for (int64_t y = box.y; y < box.y + box.height; ++y)
-        for (int64_t x = box.x; x < box.x + box.width; ++x)
-            if (insidePolygon(target, static_cast<double>(x), static_cast<double>(y)))
-                mask[static_cast<size_t>(y - extent.y) * extent.width + (x - extent.x)] = 1;
-    return mask;
+    return polygonMask(targetPolygon(paste), extent, IncrementalTerrain::kPasteBlendPx);
 }
 
 void IncrementalTerrain::freeze(const TypePaint& mask) {
@@ -321,6 +405,16 @@ Status IncrementalTerrain::paste(const Paste& paste) {
     const ExemplarDatabase& db = synthesizer_->database();
     if (paste.exemplar >= static_cast<int>(db.exemplars.size()))
         return Status::error("paste: exemplar " + std::to_string(paste.exemplar) + " does not exist");
+    if (paste.exemplar >= 0) {
+        // The whole polygon lies inside the exemplar at level 0 (its pixels' areas, as resampled to
+        // the database spacing), whatever part of it the extent shows.
+        const AtlasRect& r = db.levels[0].rects[paste.exemplar];
+        for (const auto& [x, y] : paste.source)
+            if (!(x >= -0.5 && y >= -0.5 && x <= r.width - 0.5 && y <= r.height - 0.5))
+                return Status::error("paste: source polygon leaves exemplar " + db.exemplars[paste.exemplar].name + " (" +
+                                     std::to_string(r.width) + "x" + std::to_string(r.height) +
+                                     " pixels at the database spacing)");
+    }
     const auto target = targetPolygon(paste);
     const PixelWindow box = polygonBox(target, extent_);
     if (box.empty()) return Status::error("paste: the target polygon lies outside the terrain's extent");
@@ -348,14 +442,24 @@ Status IncrementalTerrain::paste(const Paste& paste) {
             for (size_t pass = 0; pass < l.passes.size(); ++pass) {
                 if (paste.exemplar >= 0) {
                     const AtlasRect& r = dl.rects[paste.exemplar];
-                    if (lx < kInteriorMargin || ly < kInteriorMargin || lx >= r.width - kInteriorMargin ||
-                        ly >= r.height - kInteriorMargin) {
-                        failed = Status::error("paste: source polygon leaves exemplar " + db.exemplars[paste.exemplar].name +
-                                               " at level " + std::to_string(level));
-                        return;
+                    long ex = lx, ey = ly;
+                    if (level == 0) {
+                        // The pasted pixels themselves: the polygon must lie inside the exemplar.
+                        if (lx < 0 || ly < 0 || lx >= r.width || ly >= r.height) {
+                            failed = Status::error("paste: source polygon leaves exemplar " +
+                                                   db.exemplars[paste.exemplar].name + " (" + std::to_string(r.width) + "x" +
+                                                   std::to_string(r.height) + " pixels at the database spacing)");
+                            return;
+                        }
+                    } else {
+                        // Coarse levels only shape what the surroundings blend towards: an exemplar
+                        // narrower than the polygon at this level is mirrored into its interior, and
+                        // where it has none the synthesized coarse terrain under the paste stays.
+                        ex = mirroredIntoInterior(lx, r.width), ey = mirroredIntoInterior(ly, r.height);
+                        if (ex < 0 || ey < 0) continue;
                     }
                     writes.push_back({static_cast<int>(level), pass, i,
-                                      static_cast<uint32_t>((r.y + ly) * dl.width + r.x + lx), paste.height_offset_m});
+                                      static_cast<uint32_t>((r.y + ey) * dl.width + r.x + ex), paste.height_offset_m});
                 } else {
                     const long hx = lx - l.x, hy = ly - l.y;
                     if (hx < 0 || hy < 0 || hx >= l.width || hy >= l.height) {
@@ -367,7 +471,7 @@ Status IncrementalTerrain::paste(const Paste& paste) {
                                       l.passes[pass].v[f] + paste.height_offset_m});
                 }
             }
-        });
+        }, level > 0 ? kPasteBlendPx : 0.0);  // coarse levels: the frozen part only, the rim blends there too
         if (!failed) return failed;
     }
     for (const Write& w : writes) {
@@ -377,10 +481,12 @@ Status IncrementalTerrain::paste(const Paste& paste) {
         l.passes[w.pass].index[w.i] = w.index;
         l.passes[w.pass].v[w.i] = w.v;
     }
-    // Freeze the target; the band around it is re-synthesized Free so the surroundings blend.
-    const std::vector<uint8_t> covered = pasteTargetMask(paste, extent_);
+    // Freeze the target but for a rim along its edge, which is re-synthesized Free with the band
+    // around the target (the pasted coordinates are its previous results): paste and surroundings
+    // meet without a step.
+    const std::vector<uint8_t> frozen = pasteTargetMask(paste, extent_);
     record(1, box.x - extent_.x, box.y - extent_.y, box.width, box.height);
-    for (size_t i = 0; i < covered.size(); ++i) frozen_[i] |= covered[i];
+    for (size_t i = 0; i < frozen.size(); ++i) frozen_[i] |= frozen[i];
     return resynthesize(growWindow(box, kCoherentBand), nullptr, params_.constraints, false);
 }
 

@@ -10,12 +10,19 @@
 #include <cmath>
 #include <limits>
 
+#include "synth/lift_search.h"
 #include "synth/synthesis_driver.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/synthesizer.h"
 
 namespace terrasynth {
 namespace {
+
+// Slopes gentler than this have no direction worth holding over 7x7 pixels: no tilt lift.
+constexpr float kMinTiltedSlopeDeg = 5.0f;
+// A site's slope holds when its 7x7 plane's rise is within this fraction of the asked rise (about
+// 6 degrees of direction at most).
+constexpr float kTiltTolerance = 0.1f;
 
 // Sites measured together: one synthesis of `window` (level 0) gives the finished height at every
 // site of `points`, bit for bit what a 2x2 window per site gives (windowed determinism).
@@ -27,8 +34,10 @@ struct SiteGroup {
 // Windows larger than this are split whatever they would save: their state would take gigabytes.
 constexpr int kMaxGroupSide = 2048;
 
-// The 2x2 window around a site: the pixels whose centres (whole coordinates) surround it.
-PixelWindow siteWindow(const PointConstraint& p) {
+// The pixels a site is measured on: the 2x2 whose centres (whole coordinates) surround it, or with
+// `plane` the 7x7 around its nearest pixel (which hold those 2x2).
+PixelWindow siteWindow(const PointConstraint& p, bool plane) {
+    if (plane) return {std::llround(p.x) - 3, std::llround(p.y) - 3, 7, 7};
     return {static_cast<int64_t>(std::floor(p.x)), static_cast<int64_t>(std::floor(p.y)), 2, 2};
 }
 
@@ -43,20 +52,20 @@ uint64_t planCost(const PixelWindow& w, int coarsest, int passes) {
 // Splits the sites at the median of their bounding box's longer side, recursively, and keeps a
 // group whole where one window costs no more than its parts (dense sites share their margins and
 // coarse levels; scattered ones get small windows). O(n log^2 n).
-std::vector<SiteGroup> groupSites(const std::vector<PointConstraint>& points, std::vector<size_t> ids, int coarsest,
-                                  int passes, uint64_t* cost) {
-    PixelWindow box = siteWindow(points[ids[0]]);
-    int64_t x1 = box.x + 1, y1 = box.y + 1;
+std::vector<SiteGroup> groupSites(const std::vector<PointConstraint>& points, const std::vector<PixelWindow>& sites,
+                                  std::vector<size_t> ids, int coarsest, int passes, uint64_t* cost) {
+    PixelWindow box = sites[ids[0]];
+    int64_t x1 = box.x + box.width - 1, y1 = box.y + box.height - 1;
     for (size_t i : ids) {
-        const PixelWindow w = siteWindow(points[i]);
+        const PixelWindow& w = sites[i];
         box.x = std::min(box.x, w.x), box.y = std::min(box.y, w.y);
-        x1 = std::max(x1, w.x + 1), y1 = std::max(y1, w.y + 1);
+        x1 = std::max(x1, w.x + w.width - 1), y1 = std::max(y1, w.y + w.height - 1);
     }
     const bool fits = x1 - box.x < kMaxGroupSide && y1 - box.y < kMaxGroupSide;
     if (fits) {
         box.width = static_cast<int>(x1 - box.x + 1), box.height = static_cast<int>(y1 - box.y + 1);
         *cost = planCost(box, coarsest, passes);
-        if (ids.size() == 1 || (box.width == 2 && box.height == 2)) return {SiteGroup{box, std::move(ids)}};
+        if (ids.size() == 1 || (box.width == sites[ids[0]].width && box.height == sites[ids[0]].height)) return {SiteGroup{box, std::move(ids)}};
     }
     const bool along_x = x1 - box.x >= y1 - box.y;
     std::sort(ids.begin(), ids.end(), [&](size_t a, size_t b) {
@@ -65,64 +74,63 @@ std::vector<SiteGroup> groupSites(const std::vector<PointConstraint>& points, st
     });
     const auto middle = ids.begin() + static_cast<long>(ids.size() / 2);
     uint64_t cost_a = 0, cost_b = 0;
-    std::vector<SiteGroup> groups = groupSites(points, std::vector<size_t>(ids.begin(), middle), coarsest, passes, &cost_a);
-    std::vector<SiteGroup> rest = groupSites(points, std::vector<size_t>(middle, ids.end()), coarsest, passes, &cost_b);
+    std::vector<SiteGroup> groups = groupSites(points, sites, std::vector<size_t>(ids.begin(), middle), coarsest, passes, &cost_a);
+    std::vector<SiteGroup> rest = groupSites(points, sites, std::vector<size_t>(middle, ids.end()), coarsest, passes, &cost_b);
     if (fits && *cost <= cost_a + cost_b) return {SiteGroup{box, std::move(ids)}};
     *cost = cost_a + cost_b;
     groups.insert(groups.end(), std::make_move_iterator(rest.begin()), std::make_move_iterator(rest.end()));
     return groups;
 }
 
-// Finished level-0 heights at the (real-valued) sites of `group`: bilinear over the 2x2 pixels
-// around each site, whose centres are at whole coordinates.
+struct FinishedSite {
+    float height = 0.0f;                        // bilinear at the site
+    float rise_east = 0.0f, rise_south = 0.0f;  // plane fitted over the 7x7 pixels, metres per metre
+};
+
+// The finished sites of `group` (level 0, one synthesis of its window: bit for bit what a window per
+// site gives, windowed determinism): each site's height bilinear over the 2x2 pixels around it,
+// whose centres are at whole coordinates, and for the sites in `plane` the plane fitted over their
+// 7x7 pixels.
 Status measureSites(Synthesizer& synthesizer, const SynthesisParams& params, const std::vector<PointConstraint>& points,
-                    const SiteGroup& group, std::vector<float>& heights) {
+                    const std::vector<uint8_t>& plane, const SiteGroup& group, std::vector<FinishedSite>& sites) {
     auto out = synthesizer.synthesize(group.window, params, 0, false);
     if (!out) return out.status().withContext("point constraint " + std::to_string(group.points.front()));
     const Heightfield& h = out->heights;
     for (size_t i : group.points) {
         const PointConstraint& p = points[i];
+        FinishedSite& site = sites[i];
         const double fx = std::floor(p.x), fy = std::floor(p.y);
         const int x = static_cast<int>(static_cast<int64_t>(fx) - group.window.x);
         const int y = static_cast<int>(static_cast<int64_t>(fy) - group.window.y);
         const float tx = static_cast<float>(p.x - fx), ty = static_cast<float>(p.y - fy);
         const float top = h.at(x, y) + (h.at(x + 1, y) - h.at(x, y)) * tx;
         const float bottom = h.at(x, y + 1) + (h.at(x + 1, y + 1) - h.at(x, y + 1)) * tx;
-        heights[i] = top + (bottom - top) * ty;
+        site.height = top + (bottom - top) * ty;
+        if (!plane[i]) continue;
+        // Least squares over offsets -3..3: sum of dx^2 over the window is 7 * 28.
+        const int cx = static_cast<int>(std::llround(p.x) - group.window.x), cy = static_cast<int>(std::llround(p.y) - group.window.y);
+        double east = 0.0, south = 0.0;
+        for (int dy = -3; dy <= 3; ++dy)
+            for (int dx = -3; dx <= 3; ++dx) {
+                east += dx * static_cast<double>(h.at(cx + dx, cy + dy));
+                south += dy * static_cast<double>(h.at(cx + dx, cy + dy));
+            }
+        site.rise_east = static_cast<float>(east / (196.0 * h.meters_per_pixel_x));
+        site.rise_south = static_cast<float>(south / (196.0 * h.meters_per_pixel_y));
     }
     return Status::ok();
 }
 
-// The finished height moves with the lift between steps where a discrete candidate choice flips,
-// and other points' lifts shift it a little too (no coherence: s5.3, fig. 7b). The search takes
-// secant steps until the residual changes sign, then narrows the bracket by false position
-// (bisection when that stalls against one end).
-struct LiftSearch {
-    struct Sample { float lift = 0.0f, residual = 0.0f; int round = -1; };
-    Sample last, previous, opposite;  // opposite: the latest sample on the other side of the target
-    // A bracket older than this many rounds is dropped: other points' lifts have moved the site since.
-    static constexpr int kBracketRounds = 3;
+// The rise the point asks for, metres per metre east and south.
+std::pair<float, float> askedRise(const PointConstraint& p) {
+    const double kDegree = 3.14159265358979323846 / 180.0;
+    const double rise = std::tan(p.slope_angle_deg * kDegree), direction = p.slope_direction_deg * kDegree;
+    return {static_cast<float>(rise * std::sin(direction)), static_cast<float>(-rise * std::cos(direction))};
+}
 
-    void record(float lift, float residual, int round) {
-        const Sample now{lift, residual, round};
-        if (last.round >= 0 && (residual < 0.0f) != (last.residual < 0.0f)) opposite = last;
-        previous = last;
-        last = now;
-    }
-    float next() const {
-        if (opposite.round >= 0 && last.round - opposite.round <= kBracketRounds) {
-            const float lo = std::min(last.lift, opposite.lift), hi = std::max(last.lift, opposite.lift);
-            float lift = last.lift - last.residual * (opposite.lift - last.lift) / (opposite.residual - last.residual);
-            if (!(lift > lo + 0.1f * (hi - lo) && lift < hi - 0.1f * (hi - lo))) lift = 0.5f * (lo + hi);
-            return lift;
-        }
-        float slope = 1.0f;  // a lift of the target moves the site about as much
-        if (previous.round >= 0 && previous.lift != last.lift) {
-            const float measured = (last.residual - previous.residual) / (last.lift - previous.lift);
-            if (measured > 0.3f && measured < 3.0f) slope = measured;
-        }
-        return last.lift - last.residual / slope;
-    }
+struct PointSearch {
+    synth::LiftSearch height, east, south;
+    float lift = 0.0f, tilt_east = 0.0f, tilt_south = 0.0f;  // best round
 };
 
 }  // namespace
@@ -146,32 +154,60 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftPointConstraints(Synthes
     probe.constraints = lifted;
     // Validated once here, so the grouping below only ever sees sites synthesis accepts.
     if (Status s = synth::validateRequest(synthesizer.database(), PixelWindow{0, 0, 1, 1}, probe, 0); !s) return s;
+    const double mpp = synthesizer.database().meters_per_pixel;
+    std::vector<PointSearch> searches(points.size());
+    std::vector<uint8_t> tilted(points.size(), 0);
+    std::vector<PixelWindow> site_windows(points.size());
+    for (size_t i : moving) {
+        // Slopes are held over the site's own pixels only where the free levels hold the site.
+        tilted[i] = params.hold_on_free_levels && points[i].slope_angle_deg >= kMinTiltedSlopeDeg;
+        if (!tilted[i]) points[i].tilt_east = points[i].tilt_south = 0.0f;
+        site_windows[i] = siteWindow(points[i], tilted[i] != 0);
+    }
     std::vector<SiteGroup> groups;
     if (!moving.empty()) {
         uint64_t cost = 0;
-        groups = groupSites(points, moving, synth::coarsestLevel(synthesizer.database(), probe), probe.correction_passes, &cost);
+        groups = groupSites(points, site_windows, moving, synth::coarsestLevel(synthesizer.database(), probe),
+                            probe.correction_passes, &cost);
     }
-    std::vector<LiftSearch> searches(points.size());
-    std::vector<float> best_lifts(points.size()), heights(points.size());
+    std::vector<FinishedSite> finished(points.size());
     float best_worst = std::numeric_limits<float>::infinity();
     for (int round = 0; round < options.max_rounds && !moving.empty(); ++round) {
         for (const SiteGroup& group : groups)
-            if (Status s = measureSites(synthesizer, probe, points, group, heights); !s) return s;
+            if (Status s = measureSites(synthesizer, probe, points, tilted, group, finished); !s) return s;
+        // Worst miss in metres: the height at the site, or the plane's error at the 7x7's edge.
         float worst = 0.0f;
+        bool held = true;
         for (size_t i : moving) {
-            const float residual = heights[i] - points[i].height_m;
-            searches[i].record(points[i].lift_m, residual, round);
+            PointConstraint& p = points[i];
+            const FinishedSite& site = finished[i];
+            const float residual = site.height - p.height_m;
+            searches[i].height.record(p.lift_m, residual, round);
             worst = std::max(worst, std::fabs(residual));
+            held = held && std::fabs(residual) <= options.tolerance_m;
+            if (!tilted[i]) continue;
+            const auto [east, south] = askedRise(p);
+            const float miss_east = site.rise_east - east, miss_south = site.rise_south - south;
+            searches[i].east.record(p.tilt_east, miss_east, round);
+            searches[i].south.record(p.tilt_south, miss_south, round);
+            const float miss = std::hypot(miss_east, miss_south);
+            worst = std::max(worst, static_cast<float>(miss * 3.0 * mpp));
+            held = held && miss <= kTiltTolerance * std::hypot(east, south);
         }
         // The lifts of a whole round were synthesized together, so the best round is what is kept.
         if (worst < best_worst) {
             best_worst = worst;
-            for (size_t i : moving) best_lifts[i] = points[i].lift_m;
+            for (size_t i : moving) searches[i].lift = points[i].lift_m, searches[i].tilt_east = points[i].tilt_east,
+                                    searches[i].tilt_south = points[i].tilt_south;
         }
-        if (worst <= options.tolerance_m) break;
-        for (size_t i : moving) points[i].lift_m = searches[i].next();
+        if (held) break;
+        for (size_t i : moving) {
+            points[i].lift_m = searches[i].height.next();
+            if (tilted[i]) points[i].tilt_east = searches[i].east.next(), points[i].tilt_south = searches[i].south.next();
+        }
     }
-    for (size_t i : moving) points[i].lift_m = best_lifts[i];
+    for (size_t i : moving)
+        points[i].lift_m = searches[i].lift, points[i].tilt_east = searches[i].tilt_east, points[i].tilt_south = searches[i].tilt_south;
     return std::shared_ptr<const SynthesisConstraints>(std::move(lifted));
 }
 

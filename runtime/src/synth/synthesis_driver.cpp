@@ -41,13 +41,17 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
         for (size_t i = 0; i < c.points.size(); ++i) {
             const PointConstraint& p = c.points[i];
             if (!(p.radius_px > 0.0f && p.radius_px <= 1e6f) || !std::isfinite(p.height_m) || !std::isfinite(p.lift_m) ||
+                !std::isfinite(p.tilt_east) || !std::isfinite(p.tilt_south) ||
                 !(p.slope_angle_deg >= 0.0f && p.slope_angle_deg <= 80.0f) || !std::isfinite(p.slope_direction_deg) ||
                 !(std::fabs(p.x) <= bound && std::fabs(p.y) <= bound))
                 return Status::error("point constraint " + std::to_string(i) +
-                                     ": site within +-2^29 pixels, radius in (0, 1e6], height and lift finite, slope angle "
+                                     ": site within +-2^29 pixels, radius in (0, 1e6], height and lifts finite, slope angle "
                                      "0..80 degrees");
         }
         if (Status s = checkCurveLimits(c.curves, "constraints.curves"); !s) return s;
+        for (size_t i = 0; i < c.curves.size(); ++i)
+            for (float lift : c.curves[i].lift_m)
+                if (!std::isfinite(lift)) return Status::error("curve constraint " + std::to_string(i) + ": lift must be finite");
         if (c.types.types.size() != static_cast<size_t>(std::max(0, c.types.width)) * std::max(0, c.types.height))
             return Status::error("constraints: type painting size does not match its rectangle");
         if (!params.constraints->types.empty() && db.type_names.size() > static_cast<size_t>(kMaxPaintableTypes))
@@ -71,7 +75,8 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         const LevelRegion& region = plan.regions[level];
         Status begun = steps.beginLevel(
             level, region,
-            constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, region, db.meters_per_pixel),
+            constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, params.hold_on_free_levels,
+                                region, db.meters_per_pixel),
             params.previous ? coherenceCodes(params.coherence.get(), level, region) : std::vector<uint8_t>(),
             params.seed);
         if (!begun) return begun;
