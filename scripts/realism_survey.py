@@ -73,7 +73,7 @@ def judge(args, exemplar_png, out, src, mpp):
     run(['/usr/bin/python3', os.path.join(REALISM, 'realism.py'), 'compare', out, exemplar_png,
          '--size', f'{args.size}x{args.size}', '--mpp', str(mpp), '--json', rj])
     d = json.load(open(rj))['distances']
-    usage = json.loads(run([args.bin, 'stats', '--sources', src, '--json']))['sources']
+    usage = json.loads(run([args.stats_bin or args.bin, 'stats', '--sources', src, '--json']))['sources']
     return {k: d[k] for k in LIMITS}, usage
 
 
@@ -110,7 +110,7 @@ def survey_multi(args, names, seeds):
     rows = []
     for s in seeds:
         out, src, ms = synthesize(args, db, f'multi{len(names)}', s)
-        usage = json.loads(run([args.bin, 'stats', '--sources', src, '--json']))['sources']
+        usage = json.loads(run([args.stats_bin or args.bin, 'stats', '--sources', src, '--json']))['sources']
         for e in usage['exemplars']:
             ratio = e['output_share'] / e['exemplar_share']
             rows.append({'seed': s, 'exemplar': e['name'], 'output_share': e['output_share'],
@@ -152,6 +152,8 @@ def summary(rows):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('--bin', default=os.path.join(ROOT, 'build', 'bin', 'terrasynth'))
+    p.add_argument('--stats-bin', default='', help='terrasynth with `stats --sources` (default: --bin), '
+                   'to survey a build that predates it')
     p.add_argument('--exemplars', default=os.path.join(SHARED, 'exemplars'))
     p.add_argument('--work', default='/tmp/realism_survey')
     p.add_argument('--seeds', default='3')

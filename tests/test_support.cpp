@@ -48,6 +48,8 @@ std::string scratchDir(const std::string& name) {
     return dir;
 }
 
+std::string tmpPath(const std::string& name) { return env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + "/" + name; }
+
 Heightfield loadExemplarField(const std::string& stem) {
     std::string path = dataDir() + "/exemplars/" + stem + ".png";
     if (::access(path.c_str(), R_OK) != 0) path = sharedExemplarsDir() + "/" + stem + ".png";
@@ -70,7 +72,7 @@ Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h) {
 }  // namespace terrasynth::test
 
 namespace terrasynth::test {
-std::string defaultDatabasePath() { return env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + std::string("/default.tsdb"); }
+std::string defaultDatabasePath() { return tmpPath("default.tsdb"); }
 
 std::shared_ptr<const ExemplarDatabase> defaultDatabase() {
     static std::shared_ptr<const ExemplarDatabase> db = [] {

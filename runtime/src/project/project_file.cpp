@@ -116,13 +116,18 @@ Result<Project> parseProject(const std::string& text, const std::string& file, c
             r.fail("synthesis", "must be an object");
         } else {
             r.knownKeys(*s, "synthesis", {"seed", "jitter", "correction_passes", "coarsest_level", "first_constrained_level",
-                                          "hold_point_heights"});
+                                          "hold_point_heights", "drainage"});
             r.number(*s, "seed", "synthesis.seed", &p.synthesis.seed, 0, 4294967295.0);
             r.number(*s, "jitter", "synthesis.jitter", &p.synthesis.jitter, 0, 1);
             r.number(*s, "correction_passes", "synthesis.correction_passes", &p.synthesis.correction_passes, 0, 4);
             r.number(*s, "coarsest_level", "synthesis.coarsest_level", &p.synthesis.coarsest_level, -1, 12);
             r.number(*s, "first_constrained_level", "synthesis.first_constrained_level",
                      &p.synthesis.first_constrained_level, 0, 12);
+            if (auto d = s->find("drainage"); d != s->end()) {  // issue 17: "off" | "breach"
+                if (*d == "off") p.synthesis.drainage = Drainage::Off;
+                else if (*d == "breach") p.synthesis.drainage = Drainage::Breach;
+                else r.fail("synthesis.drainage", "must be \"off\" or \"breach\"");
+            }
             if (auto hold = s->find("hold_point_heights"); hold != s->end()) {
                 if (!hold->is_boolean()) r.fail("synthesis.hold_point_heights", "must be true or false");
                 else p.hold_point_heights = hold->get<bool>();
@@ -161,6 +166,7 @@ std::string projectToJson(const Project& p) {
           {"correction_passes", p.synthesis.correction_passes},
           {"coarsest_level", p.synthesis.coarsest_level},
           {"first_constrained_level", p.synthesis.first_constrained_level},
+          {"drainage", p.synthesis.drainage == Drainage::Off ? "off" : "breach"},
           {"hold_point_heights", p.hold_point_heights}}},
         {"constraints", p.constraints},
         {"layers", p.layers},
