@@ -284,18 +284,17 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         }
     }
     float v = keep_v ? prev_v[pixel] : best_h * scale.x;
-    if (use_blend && !keep_v) {
-        const float4 sums = blend[ly * region.width + lx];  // sum b, sum b*h_t, sum b*d (s5.1)
-        if (sums.x > 0.0f) {
-            // h_c is the candidate's own height E(q) + V, not its neighbourhood mean (mode 0): on a
-            // peak the mean sits below the centre, and pulling the mean would overshoot the site.
-            const float candidate_height = heights[best_q] + v;
-            v = v + phi_d(sums.y / sums.x - candidate_height, sums.z / sums.x, TOLERANCE_SLOPE, BLEND_SLOPE);
-        }
+    const float4 sums = use_blend ? blend[pixel] : (float4)(0.0f);  // sum b, sum b*h_t, sum b*d (s5.1)
+    const bool constrained = sums.x > 0.0f;
+    if (constrained && !keep_v) {
+        // h_c is the candidate's own height E(q) + V, not its neighbourhood mean (mode 0): on a
+        // peak the mean sits below the centre, and pulling the mean would overshoot the site.
+        const float candidate_height = heights[best_q] + v;
+        v = v + phi_d(sums.y / sums.x - candidate_height, sums.z / sums.x, TOLERANCE_SLOPE, BLEND_SLOPE);
     }
     // Drainage (issue 17): a channel carved at the coarser level (drainage_breach.h) stays at or
-    // below the carved height however the candidates re-detail it.
-    if (ceiling < INFINITY) v = fmin(v, ceiling - heights[best_q]);
+    // below the carved height however the candidates re-detail it; constraints win over channels.
+    if (ceiling < INFINITY && !constrained) v = fmin(v, ceiling - heights[best_q]);
     state[pixel] = (float4)((float)(best_q % width), (float)(best_q / width), v, ceiling);
 }
 

@@ -19,6 +19,13 @@
 
 namespace terrasynth::synth {
 
+// Correction passes added at the coarsest synthesized level. Starting from a level where the
+// exemplars are large, the first level holds whole exemplar slopes; point and curve constraints
+// pull halfway per pass (eq. 8-9) and now act on fewer levels than when synthesis started at the
+// database's coarsest level, so the broad slope they ask for needs more pulls there. The level
+// holds about 1/256 of the output's pixels: the cost is negligible.
+constexpr int kCoarsestLevelExtraPasses = 2;
+
 // The coarsest level at which exemplars holding at least half of the database's level-0 pixels are
 // still kMinCoarsestSide pixels on their shorter side (0 when none is).
 int automaticCoarsestLevel(const ExemplarDatabase& db);

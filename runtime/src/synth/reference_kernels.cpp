@@ -271,17 +271,18 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
             float v = best_h * scale[0];
             if (keep_v) v = context.previous.v[pixel];
             const float ceiling = state[pixel].ceiling;
-            if (!keep_v && !constraints.blend.empty()) {
-                // s5.1: the blended target of the constraints reaching this pixel.
-                const float* sums = &constraints.blend[(static_cast<size_t>(ly) * region.width + lx) * 4];
-                if (sums[0] > 0.0f) {
-                    // h_c = E(q) + V, the candidate's own height (see synthesis.cl).
-                    const float candidate_height = db.height_m[static_cast<size_t>(best_q)] + v;
-                    v = v + phiD(sums[1] / sums[0] - candidate_height, sums[2] / sums[0], kPointToleranceSlope, kPointBlendSlope);
-                }
+            // s5.1: the blended target of the constraints reaching this pixel.
+            const float* sums =
+                constraints.blend.empty() ? nullptr : &constraints.blend[(static_cast<size_t>(ly) * region.width + lx) * 4];
+            const bool constrained = sums && sums[0] > 0.0f;
+            if (constrained && !keep_v) {
+                // h_c = E(q) + V, the candidate's own height (see synthesis.cl).
+                const float candidate_height = db.height_m[static_cast<size_t>(best_q)] + v;
+                v = v + phiD(sums[1] / sums[0] - candidate_height, sums[2] / sums[0], kPointToleranceSlope, kPointBlendSlope);
             }
-            // Drainage (issue 17): carved channels stay at or below their carved height.
-            if (ceiling < INFINITY) v = std::fmin(v, ceiling - db.height_m[static_cast<size_t>(best_q)]);
+            // Drainage (issue 17): carved channels stay at or below their carved height; constraints
+            // win over channels.
+            if (ceiling < INFINITY && !constrained) v = std::fmin(v, ceiling - db.height_m[static_cast<size_t>(best_q)]);
             PixelState& out = state[static_cast<size_t>(ly) * region.width + lx];
             out.x = static_cast<float>(best_q % db.width);
             out.y = static_cast<float>(best_q / db.width);

@@ -52,10 +52,19 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
 
 namespace {
 
-// Pixels the drainage step reads beyond what it must produce, per level (drainage_breach.h).
-std::vector<int> drainageMargins(int coarsest) {
-    std::vector<int> margins(coarsest + 1);
-    for (int level = 0; level <= coarsest; ++level) margins[level] = 2 * breachRadius(level) + 1;
+// Correction passes of a level: the coarsest one gets kCoarsestLevelExtraPasses more
+// (initial_patches.h).
+int passesAt(const SynthesisParams& params, int level, int coarsest) {
+    return params.correction_passes + (level == coarsest && params.correction_passes > 0 ? kCoarsestLevelExtraPasses : 0);
+}
+
+// Pixels each level reads beyond the plan's uniform correction margin: the coarsest level's extra
+// passes, and the drainage step's reach (drainage_breach.h).
+std::vector<int> extraMargins(const SynthesisParams& params, int coarsest) {
+    std::vector<int> margins(coarsest + 1, 0);
+    margins[coarsest] = kSubpassReach * 4 * (passesAt(params, coarsest, coarsest) - params.correction_passes);
+    if (params.drainage == Drainage::Breach)
+        for (int level = 0; level <= coarsest; ++level) margins[level] += 2 * breachRadius(level) + 1;
     return margins;
 }
 
@@ -106,9 +115,8 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
     if (output_level > coarsest)
         return blockAverageOfCoarsest(db, window, params, output_level, coarsest, want_sources, steps, peak_state_pixels);
     const bool drain = params.drainage == Drainage::Breach;
-    const int recorded_passes = params.correction_passes + (drain ? 1 : 0);
-    const SynthesisPlan plan = planSynthesis(window, output_level, coarsest, params.correction_passes,
-                                             drain ? drainageMargins(coarsest) : std::vector<int>());
+    const SynthesisPlan plan =
+        planSynthesis(window, output_level, coarsest, params.correction_passes, extraMargins(params, coarsest));
     size_t peak = 0;
     auto history = params.record_history ? std::make_shared<SynthesisHistory>() : nullptr;
     if (history) history->levels.resize(coarsest + 1);
@@ -120,12 +128,13 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
             params.previous ? coherenceCodes(params.coherence.get(), level, region) : std::vector<uint8_t>();
         Status begun = steps.beginLevel(level, region, constraints, coherence, params.seed);
         if (!begun) return begun;
+        const int passes = passesAt(params, level, coarsest);
         if (history) {
             history->levels[level] = {region.x, region.y, region.width, region.height, {}};
-            history->levels[level].passes.resize(recorded_passes);
+            history->levels[level].passes.resize(passes + (drain ? 1 : 0));
         }
         int subpass = 0;
-        for (int pass = 0; pass < params.correction_passes; ++pass) {
+        for (int pass = 0; pass < passes; ++pass) {
             Status s = steps.beginPass(level, region, previousPass(params.previous.get(), level, pass, region));
             if (!s) return s;
             for (const auto& parity : kSubpassParity) {
@@ -140,7 +149,7 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         }
         if (!drain) return Status::ok();
         // Issue 17: breach the level's pits; frozen pixels take the previous synthesis's drained state.
-        const PassHistory drained = previousPass(params.previous.get(), level, params.correction_passes, region);
+        const PassHistory drained = previousPass(params.previous.get(), level, passes, region);
         Status s = steps.drain(level, region, breachRadius(level),
                                {&coherence, &drained, &constraints.blend, steps.depthMargin(level)});
         if (!s) return s;
