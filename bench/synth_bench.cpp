@@ -42,10 +42,11 @@ Synthesizer& synthesizer(SynthesisBackend backend) {
     return *slot;
 }
 
-void synthesize(benchmark::State& state, SynthesisBackend backend) {
+void synthesize(benchmark::State& state, SynthesisBackend backend, Drainage drainage = SynthesisParams{}.drainage) {
     const int size = static_cast<int>(state.range(0));
     Synthesizer& s = synthesizer(backend);
     SynthesisParams params;
+    params.drainage = drainage;
     int64_t tile = 0;
     s.synthesize({0, 0, size, size}, params, 0, false);  // warm-up: kernel build, buffer allocation
     for (auto _ : state) {
@@ -62,10 +63,13 @@ void synthesize(benchmark::State& state, SynthesisBackend backend) {
 
 void BM_SynthesizeOpenCL(benchmark::State& state) { synthesize(state, SynthesisBackend::OpenCL); }
 void BM_SynthesizeReference(benchmark::State& state) { synthesize(state, SynthesisBackend::Reference); }
+// With the drainage step (issue 17, off by default), to see its cost next to BM_SynthesizeOpenCL.
+void BM_SynthesizeOpenCLBreach(benchmark::State& state) { synthesize(state, SynthesisBackend::OpenCL, Drainage::Breach); }
 
 }  // namespace
 
 BENCHMARK(BM_SynthesizeOpenCL)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SynthesizeOpenCLBreach)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SynthesizeReference)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 
 BENCHMARK_MAIN();

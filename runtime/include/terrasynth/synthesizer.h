@@ -70,8 +70,10 @@ constexpr int kInitialPatchSize = 24;
 // from the exemplars below it). Bounded reach: a pixel depends on heights within
 // 2 * breachRadius(level) + 1 pixels, which the window plan adds to that level's margin, so windows
 // stay bit-identical to larger windows. Frozen pixels and pixels under point or curve constraints
-// are never carved (a path may end at a lower one). Off: no drainage step; the synthesis is exactly
-// what it is without this feature.
+// are never carved (a path may end at a lower one). Cost: the search runs on the host and the
+// coarse levels' regions grow by the reach, about +100% synthesis time at 1024^2, which is why Off
+// is the default (docs/realism.md, "Drainage"). Off: no drainage step; the synthesis is exactly what
+// it is without this feature (the issue 16 start of synthesis applies to both).
 enum class Drainage : uint8_t { Off = 0, Breach = 1 };
 // Search radius of the breach at `level`, in pixels of that level (docs/realism.md, "Drainage").
 int breachRadius(int level);
@@ -98,7 +100,7 @@ struct SynthesisParams {
     std::shared_ptr<const SynthesisHistory> previous;
     std::shared_ptr<const CoherenceMap> coherence;
     bool record_history = false;  // fill SynthesisOutput::history
-    Drainage drainage = Drainage::Breach;
+    Drainage drainage = Drainage::Off;  // Breach costs about +100% synthesis time (docs/realism.md)
 };
 
 struct SynthesisOutput {
