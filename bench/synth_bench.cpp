@@ -42,10 +42,11 @@ Synthesizer& synthesizer(SynthesisBackend backend) {
     return *slot;
 }
 
-void synthesize(benchmark::State& state, SynthesisBackend backend) {
+void synthesize(benchmark::State& state, SynthesisBackend backend, Drainage drainage = SynthesisParams{}.drainage) {
     const int size = static_cast<int>(state.range(0));
     Synthesizer& s = synthesizer(backend);
     SynthesisParams params;
+    params.drainage = drainage;
     int64_t tile = 0;
     s.synthesize({0, 0, size, size}, params, 0, false);  // warm-up: kernel build, buffer allocation
     for (auto _ : state) {
@@ -62,6 +63,8 @@ void synthesize(benchmark::State& state, SynthesisBackend backend) {
 
 void BM_SynthesizeOpenCL(benchmark::State& state) { synthesize(state, SynthesisBackend::OpenCL); }
 void BM_SynthesizeReference(benchmark::State& state) { synthesize(state, SynthesisBackend::Reference); }
+// With the drainage step (issue 17, off by default), to see its cost next to BM_SynthesizeOpenCL.
+void BM_SynthesizeOpenCLBreach(benchmark::State& state) { synthesize(state, SynthesisBackend::OpenCL, Drainage::Breach); }
 
 // Point lifting (issue 20: about 80 ms per point before sites shared windows): range(0) random point
 // constraints over a range(1)^2 extent, lifted onto their heights (up to 10 rounds).
@@ -90,6 +93,7 @@ void BM_LiftPoints(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_SynthesizeOpenCL)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SynthesizeOpenCLBreach)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SynthesizeReference)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_LiftPoints)->Args({100, 256})->Args({1000, 1024})->Args({10000, 1024})->Unit(benchmark::kMillisecond)
     ->UseRealTime()->Iterations(1);

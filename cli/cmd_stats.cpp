@@ -1,6 +1,7 @@
-// `terrasynth stats a.png [--vs b.png] [--json]`: geomorphological realism statistics of a terrain
-// and, with --vs, per-metric distances to a second terrain read against the spread between a's own
-// quadrants (docs/realism.md explains every figure).
+// `terrasynth stats a.png [--vs b.png] [--sources src.png] [--json]`: geomorphological realism
+// statistics of a terrain and, with --vs, per-metric distances to a second terrain read against the
+// spread between a's own quadrants; with --sources, which parts of its exemplars a synthesis drew
+// from (docs/realism.md explains every figure).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "command_registry.h"
+#include "source_usage_report.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/terrain_stats.h"
 
@@ -16,7 +18,7 @@ namespace terrasynth::cli {
 namespace {
 
 struct StatsOptions {
-    std::string a, b;
+    std::string a, b, sources;
     bool json = false;
 };
 
@@ -131,6 +133,19 @@ std::string spacingText(double x, double y) {
 bool isotropic(const Heightfield& f) { return std::fabs(f.meters_per_pixel_x / f.meters_per_pixel_y - 1.0) < 1e-3; }
 
 void run(const StatsOptions& o) {
+    if (o.a.empty() && o.sources.empty()) return fail(kCommand, "give a terrain, --sources src.png, or both");
+    nlohmann::json sources;
+    if (!o.sources.empty()) {
+        auto measured = measureSourcesMap(o.sources);
+        if (!measured) return fail(kCommand, measured.message());
+        sources = std::move(measured.value());
+    }
+    if (o.a.empty()) {
+        if (o.json) std::printf("%s\n", jsonText(nlohmann::json{{"sources", sources}}, 2).c_str());
+        else printSourcesReport(sources);
+        return;
+    }
+    if (!sources.is_null() && !o.json) printSourcesReport(sources);
     auto a = load(o.a);
     if (!a) return fail(kCommand, a.message());
     Heightfield field_a = std::move(a.value());
@@ -147,7 +162,9 @@ void run(const StatsOptions& o) {
     if (!stats_a) return fail(kCommand, o.a + ": " + stats_a.message());
 
     if (o.b.empty()) {
-        if (o.json) std::printf("%s\n", jsonText(toJson(o.a, *stats_a), 2).c_str());
+        if (o.json && !sources.is_null())
+            std::printf("%s\n", jsonText(nlohmann::json{{"a", toJson(o.a, *stats_a)}, {"sources", sources}}, 2).c_str());
+        else if (o.json) std::printf("%s\n", jsonText(toJson(o.a, *stats_a), 2).c_str());
         else printSummary(o.a, *stats_a);
         return;
     }
@@ -178,6 +195,7 @@ void run(const StatsOptions& o) {
         report["a"] = toJson(o.a, *stats_a);
         report["b"] = toJson(o.b, *stats_b);
         report["distance"] = toJson(distance);
+        if (!sources.is_null()) report["sources"] = sources;
         if (!note.empty()) report["note"] = note;
         if (spread)
             report["reference_spread"] = {{"source", "quadrants of a"},   {"piece_size", spread->piece_size},
@@ -196,10 +214,12 @@ void addStatsCommand(CLI::App& app) {
     auto options = std::make_shared<StatsOptions>();
     CLI::App* cmd = app.add_subcommand(
         "stats", "Realism statistics of a terrain (slope, curvature, relief, drainage, pits, landforms, spectrum)");
-    cmd->add_option("terrain", options->a, "Heightfield in any exemplar format (PNG + sidecar, .f32 + sidecar, ...)")
-        ->required();
+    cmd->add_option("terrain", options->a, "Heightfield in any exemplar format (PNG + sidecar, .f32 + sidecar, ...)");
     cmd->add_option("--vs", options->b,
                     "Second terrain: print per-metric distances (it is resampled to the first one's spacing)");
+    cmd->add_option("--sources", options->sources,
+                    "Sources map of a synthesis (synth --sources): share of the output per exemplar and from its "
+                    "flattest 30% by 9x9 local relief");
     cmd->add_flag("--json", options->json, "Print JSON instead of text");
     setAction(cmd, [options] { run(*options); });
 }

@@ -1,5 +1,6 @@
 // terrasynth synth <project.tsyn | --db db.tsdb> -o out.png|out.f32|out.exr [--size WxH] [--origin X,Y]
 //                  [--seed N] [--level L] [--sources src.png] [--preview hillshade.png] [--backend opencl|reference]
+//                  [--drainage off|breach]
 //                  [--coherent-with previous.tsyn]
 #include <algorithm>
 #include <cctype>
@@ -21,7 +22,7 @@ namespace terrasynth::cli {
 namespace {
 
 struct SynthArgs {
-    std::string project, database, output, sources, preview, size, origin, coherent_with, backend = "opencl";
+    std::string project, database, output, sources, preview, size, origin, coherent_with, backend = "opencl", drainage;
     int64_t seed = -1;
     int level = 0;
 };
@@ -113,6 +114,9 @@ Result<Project> projectWithOverrides(const std::string& project_path, const Synt
     if (!args.origin.empty() && !parsePair(args.origin, ',', &project.origin_x, &project.origin_y))
         return Status::error("--origin must be X,Y, got \"" + args.origin + "\"");
     if (args.seed >= 0) project.synthesis.seed = static_cast<uint32_t>(args.seed);
+    if (args.drainage == "off") project.synthesis.drainage = Drainage::Off;
+    else if (args.drainage == "breach") project.synthesis.drainage = Drainage::Breach;
+    else if (!args.drainage.empty()) return Status::error("--drainage must be off or breach, got \"" + args.drainage + "\"");
     return project;
 }
 
@@ -223,6 +227,8 @@ void addSynthCommand(CLI::App& app) {
     cmd->add_option("--sources", args->sources, "Write the exemplar coordinate map (16-bit RGB PNG)");
     cmd->add_option("--preview", args->preview, "Write a hillshade preview PNG");
     cmd->add_option("--backend", args->backend, "opencl (default) or reference (plain C++)");
+    cmd->add_option("--drainage", args->drainage,
+                    "off (no drainage step) or breach (carve closed pits so the terrain drains, issue 17); default: the project's");
     cmd->add_option("--coherent-with", args->coherent_with,
                     "Previous version of the project (.tsyn): re-synthesize only where the constraints changed (s5.3)");
     setAction(cmd, [args] { runSynth(*args); });

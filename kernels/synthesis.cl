@@ -10,6 +10,9 @@
 
 #define INTERIOR_MARGIN 2
 // Paper constants (s5), passed by the host as -D so they live in one place (constraints.h).
+#ifndef INIT_PATCH_SIZE
+#define INIT_PATCH_SIZE 8
+#endif
 #ifndef SEEDS_PER_TYPE
 #define SEEDS_PER_TYPE 9
 #endif
@@ -68,17 +71,52 @@ TS_INLINE float4 neighbour_appearance_q(global const ushort4* appearance, int wi
 
 TS_INLINE int floor_div2(int v) { return v >> 1; }
 
-// Coarsest level: random interior coordinates from the per-type seed lists, V = 0.
-kernel void init_level(global float4* state, Region region, global const uint* seeds, uint seed_count,
-                       int atlas_width, uint salt) {
-    const int lx = get_global_id(0), ly = get_global_id(1);
-    if (lx >= region.width || ly >= region.height) return;
-    const uint pick = seeds[ts_hash3(region.x + lx, region.y + ly, salt) % seed_count];
-    state[ly * region.width + lx] =
-        (float4)((float)(pick % (uint)atlas_width), (float)(pick / (uint)atlas_width), 0.0f, 0.0f);
+// Floor division by a positive divisor, for negative global coordinates too.
+TS_INLINE int floor_div(int v, int d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
+// v reflected into [0, n): ... 2 1 0 | 0 1 2 ... n-1 | n-1 n-2 ...
+TS_INLINE int mirror_into(int v, int n) {
+    const int period = 2 * n;
+    int m = v % period;
+    if (m < 0) m += period;
+    return m < n ? m : period - 1 - m;
 }
 
-// Eq. 1-2: each parent pixel initialises its 2x2 children with jittered coordinates.
+// Coarsest level (issue 16, synth/initial_patches.h): irregular patches of exemplar coordinates.
+// Every INIT_PATCH_SIZE^2 cell of the global grid holds one jittered site; a pixel belongs to the
+// nearest site of the 3x3 cells around it (Voronoi cells); each cell copies the exemplar around
+// one random interior position (exemplars picked in proportion to `cumulative_area`), mirrored at
+// the interior's edges. V = 0, no drainage ceiling.
+kernel void init_level(global float4* state, Region region, global const int4* rects,
+                       global const uint* cumulative_area, int exemplar_count, uint salt) {
+    const int lx = get_global_id(0), ly = get_global_id(1);
+    if (lx >= region.width || ly >= region.height) return;
+    const int gx = region.x + lx, gy = region.y + ly;
+    const int cx = floor_div(gx, INIT_PATCH_SIZE), cy = floor_div(gy, INIT_PATCH_SIZE);
+    int best = 0x7fffffff, site_x = 0, site_y = 0, cell_x = 0, cell_y = 0;
+    for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) {
+            const int sx = (cx + i) * INIT_PATCH_SIZE + (int)(ts_hash3(cx + i, cy + j, salt) % (uint)INIT_PATCH_SIZE);
+            const int sy = (cy + j) * INIT_PATCH_SIZE + (int)(ts_hash3(cx + i, cy + j, salt ^ 0x1u) % (uint)INIT_PATCH_SIZE);
+            const int d = (sx - gx) * (sx - gx) + (sy - gy) * (sy - gy);
+            if (d < best) {
+                best = d;
+                site_x = sx, site_y = sy, cell_x = cx + i, cell_y = cy + j;
+            }
+        }
+    const uint pick = ts_hash3(cell_x, cell_y, salt ^ 0x2u) % cumulative_area[exemplar_count - 1];
+    int e = 0;
+    while (e < exemplar_count - 1 && pick >= cumulative_area[e]) ++e;
+    const int4 r = rects[e];
+    const int iw = r.z - 2 * INTERIOR_MARGIN, ih = r.w - 2 * INTERIOR_MARGIN;
+    const int ox = (int)(ts_hash3(cell_x, cell_y, salt ^ 0x3u) % (uint)iw);
+    const int oy = (int)(ts_hash3(cell_x, cell_y, salt ^ 0x4u) % (uint)ih);
+    const int x = r.x + INTERIOR_MARGIN + mirror_into(ox + gx - site_x, iw);
+    const int y = r.y + INTERIOR_MARGIN + mirror_into(oy + gy - site_y, ih);
+    state[ly * region.width + lx] = (float4)((float)x, (float)y, 0.0f, INFINITY);
+}
+
+// Eq. 1-2: each parent pixel initialises its 2x2 children with jittered coordinates; they inherit its
+// drainage ceiling too (issue 17).
 kernel void upsample_jitter(global const float4* parent, Region parent_region, global float4* child, Region child_region,
                      global const uchar* parent_exemplar, int parent_width, global const int4* parent_rects,
                      global const int4* child_rects, float jitter, uint salt_x, uint salt_y) {
@@ -96,7 +134,7 @@ kernel void upsample_jitter(global const float4* parent, Region parent_region, g
     const float margin = (float)INTERIOR_MARGIN;
     cx = fmin(fmax(cx, margin), (float)(cr.z - 1) - margin);
     cy = fmin(fmax(cy, margin), (float)(cr.w - 1) - margin);
-    child[ly * child_region.width + lx] = (float4)((float)cr.x + cx, (float)cr.y + cy, p.z, 0.0f);
+    child[ly * child_region.width + lx] = (float4)((float)cr.x + cx, (float)cr.y + cy, p.z, p.w);
 }
 
 // Eq. 3-7 for the pixels of one parity class (one of the 4 subpasses), in place: a pixel of the
@@ -158,10 +196,11 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width - inset || ly >= region.height - inset) return;
     const int pixel = ly * region.width + lx;
+    const float ceiling = state[pixel].w;
     if (use_prev && prev_index[pixel] != NO_PREVIOUS && coherence[pixel] == COHERENCE_FROZEN) {
         // s5.3 freeze: the previous result stands, offset included, whatever the neighbours do.
         const int q = (int)prev_index[pixel];
-        state[pixel] = (float4)((float)(q % width), (float)(q / width), prev_v[pixel], 0.0f);
+        state[pixel] = (float4)((float)(q % width), (float)(q / width), prev_v[pixel], ceiling);
         return;
     }
     const int2 diagonals[4] = {(int2)(-1, -1), (int2)(1, -1), (int2)(-1, 1), (int2)(1, 1)};
@@ -254,21 +293,19 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         candidate_cost(appearance, width, ns, best_q, weight, 1.0f, INFINITY, &h);
         best_h = h;
     }
-    if (keep_v) {
-        state[pixel] = (float4)((float)(best_q % width), (float)(best_q / width), prev_v[pixel], 0.0f);
-        return;
+    float v = keep_v ? prev_v[pixel] : best_h * scale.x;
+    const float4 sums = use_blend ? blend[pixel] : (float4)(0.0f);  // sum b, sum b*h_t, sum b*d (s5.1)
+    const bool constrained = sums.x > 0.0f;
+    if (constrained && !keep_v) {
+        // h_c is the candidate's own height E(q) + V, not its neighbourhood mean (mode 0): on a
+        // peak the mean sits below the centre, and pulling the mean would overshoot the site.
+        const float candidate_height = heights[best_q] + v;
+        v = v + phi_d(sums.y / sums.x - candidate_height, sums.z / sums.x, TOLERANCE_SLOPE, BLEND_SLOPE);
     }
-    float v = best_h * scale.x;
-    if (use_blend) {
-        const float4 sums = blend[ly * region.width + lx];  // sum b, sum b*h_t, sum b*d (s5.1)
-        if (sums.x > 0.0f) {
-            // h_c is the candidate's own height E(q) + V, not its neighbourhood mean (mode 0): on a
-            // peak the mean sits below the centre, and pulling the mean would overshoot the site.
-            const float candidate_height = heights[best_q] + v;
-            v = v + phi_d(sums.y / sums.x - candidate_height, sums.z / sums.x, TOLERANCE_SLOPE, BLEND_SLOPE);
-        }
-    }
-    state[ly * region.width + lx] = (float4)((float)(best_q % width), (float)(best_q / width), v, 0.0f);
+    // Drainage (issue 17): a channel carved at the coarser level (drainage_breach.h) stays at or
+    // below the carved height however the candidates re-detail it; constraints win over channels.
+    if (ceiling < INFINITY && !constrained) v = fmin(v, ceiling - heights[best_q]);
+    state[pixel] = (float4)((float)(best_q % width), (float)(best_q / width), v, ceiling);
 }
 
 // Heights E(S) + V (bilinear in E) of the output window, and the sources when asked for.

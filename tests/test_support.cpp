@@ -54,6 +54,8 @@ std::string scratchDir(const std::string& name) {
     return dir;
 }
 
+std::string tmpPath(const std::string& name) { return env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + "/" + name; }
+
 Heightfield loadExemplarField(const std::string& stem) {
     std::string path = dataDir() + "/exemplars/" + stem + ".png";
     if (::access(path.c_str(), R_OK) != 0) path = sharedExemplarsDir() + "/" + stem + ".png";
@@ -119,7 +121,7 @@ std::vector<std::string> filesUnder(const std::string& dir) {
 }  // namespace terrasynth::test
 
 namespace terrasynth::test {
-std::string defaultDatabasePath() { return env("TERRASYNTH_TEST_TMP", TERRASYNTH_TEST_TMP) + std::string("/default.tsdb"); }
+std::string defaultDatabasePath() { return tmpPath("default.tsdb"); }
 
 namespace {
 std::shared_ptr<const ExemplarDatabase> cachedDatabase(const std::string& inputs, const std::string& cache) {

@@ -22,6 +22,8 @@ CliRun runCommand(const std::string& command_line);
 bool terrasynthBuilt();
 // A fresh, empty scratch directory for one test: <build>/test_tmp/<name>.
 std::string scratchDir(const std::string& name);
+// <build>/test_tmp/<name>, left as it is (for caches that outlive one run).
+std::string tmpPath(const std::string& name);
 // Loads a shipped or shared exemplar (by stem, e.g. "orom_alaska") and aborts the test on error.
 Heightfield loadExemplarField(const std::string& stem);
 // Crop of a field (x0,y0,w,h), same spacing.

@@ -13,7 +13,9 @@
 //               Lefebvre & Hoppe 2005, so it is not stored.                           4 bytes
 //   type        T^i, terrain type (majority of the 2^i x 2^i block of T^0); kNoType in gutters 1 byte
 //   exemplar    exemplar index, kNoExemplar in the padding                              1 byte
-// = 18 bytes per pixel per level, about 24 per base pixel with the pyramid (paper: 42.7).
+//   closed      1 where the pixel lies in a closed depression of its own exemplar at this level
+//               (Priority-Flood raises it), so synthesis keeps real basins (issue 17)   1 byte
+// = 19 bytes per pixel per level, about 25 per base pixel with the pyramid (paper: 42.7).
 //
 // Building is deterministic: the same inputs and options give the same bytes, whatever the thread
 // count. A database is immutable after building and safe to share between threads.
@@ -52,6 +54,11 @@ struct DatabaseLevel {
     std::vector<uint32_t> similar;        // C^i_2 as atlas index y*width+x
     std::vector<uint8_t> type;            // T^i
     std::vector<uint8_t> exemplar;        // exemplar index per pixel
+    // 1 where the exemplar pixel is in a closed depression of its exemplar at this level (raised by
+    // Priority-Flood without epsilon, the exemplar's edge draining out), else 0; 0 in gutters.
+    // Drainage (synthesizer.h) leaves pits copied from such pixels alone: dune hollows, karst,
+    // crater lakes and salars are real.
+    std::vector<uint8_t> closed;
     std::vector<AtlasRect> rects;         // per exemplar
     // Per type: kTypeSeedCount atlas indices of interior pixels of that type, drawn at random
     // (deterministically) for type seeding (s5.2) and for initialising the coarsest level.
@@ -62,7 +69,7 @@ struct DatabaseLevel {
 };
 
 struct ExemplarDatabase {
-    static constexpr uint32_t kFormatVersion = 1;
+    static constexpr uint32_t kFormatVersion = 2;  // 2: DatabaseLevel::closed
     double meters_per_pixel = 0.0;             // spacing of level 0; level i has 2^i times this
     std::vector<ExemplarInfo> exemplars;
     std::vector<int> exemplar_type;            // default type of each exemplar (its terrain_class)

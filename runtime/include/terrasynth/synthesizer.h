@@ -25,7 +25,8 @@ namespace terrasynth {
 
 // Coherence (paper s5.3): the results of a previous synthesis, every level and every pass, kept so
 // the next synthesis can prefer them. Recorded when SynthesisParams::record_history is set.
-// Memory: 8 bytes per pixel per pass per level (about 21 bytes per output pixel for 2 passes).
+// Memory: 8 bytes per pixel per pass per level (about 21 bytes per output pixel for 2 passes; one
+// more pass with drainage).
 struct SynthesisHistory {
     struct Pass {
         std::vector<uint32_t> index;  // chosen atlas pixel per region pixel
@@ -33,6 +34,8 @@ struct SynthesisHistory {
     };
     struct Level {
         int x = 0, y = 0, width = 0, height = 0;  // region of the global grid at this level
+        // One per correction pass; with drainage, one more: the state after breaching, which frozen
+        // pixels take so they stay bit-identical.
         std::vector<Pass> passes;
     };
     std::vector<Level> levels;  // indexed by level; empty levels were not synthesized
@@ -52,11 +55,38 @@ struct CoherenceMap {
 };
 constexpr float kCoherentWeight = 0.25f;
 
+// Automatic coarsest level (SynthesisParams::coarsest_level = -1): exemplars must still be this many
+// pixels on their shorter side there.
+constexpr int kMinCoarsestSide = 40;
+// Level M starts from irregular patches (cells of about this many pixels across, one random
+// exemplar position each, in proportion to exemplar area) instead of independent random pixels.
+constexpr int kInitialPatchSize = 24;
+
+// Drainage (issue 17; beyond the paper, whose s6 notes that pixel-based synthesis drains
+// unrealistically). Breach: after the correction passes of every level, each closed pit looks for the
+// cheapest path to a lower pixel within breachRadius(level) pixels and the path is carved to a
+// straight descending profile (least-cost breaching, Lindsay 2016), by lowering V; the carved
+// heights become a ceiling the next level's correction may not exceed (the channel is re-detailed
+// from the exemplars below it). Bounded reach: a pixel depends on heights within
+// 2 * breachRadius(level) + 1 pixels, which the window plan adds to that level's margin, so windows
+// stay bit-identical to larger windows. Frozen pixels and pixels under point or curve constraints
+// are never carved (a path may end at a lower one). Cost: the search runs on the host and the
+// coarse levels' regions grow by the reach, about +100% synthesis time at 1024^2, which is why Off
+// is the default (docs/realism.md, "Drainage"). Off: no drainage step; the synthesis is exactly what
+// it is without this feature (the issue 16 start of synthesis applies to both).
+enum class Drainage : uint8_t { Off = 0, Breach = 1 };
+// Search radius of the breach at `level`, in pixels of that level (docs/realism.md, "Drainage").
+int breachRadius(int level);
+
 struct SynthesisParams {
     uint32_t seed = 1;
     float jitter = 0.4f;        // r of eq. 1, in pixels of each level; 0..1
     int correction_passes = 2;  // passes per level, each of 4 subpasses (paper: 2); 0..4
-    // Coarsest synthesis level M (paper s4). -1: the database's coarsest level L.
+    // Coarsest synthesis level M (paper s4), where synthesis starts from patches of exemplar
+    // coordinates. -1 (automatic): the coarsest level at which exemplars holding at least half of
+    // the database's pixels are still kMinCoarsestSide pixels on their shorter side; coarser
+    // levels hold too few pixels to synthesize from (a 648-pixel exemplar is 10x10 at level 6).
+    // Output levels above M are block averages of level M.
     int coarsest_level = -1;
     // Point and type constraints (paper s5); null = none. Shared, immutable while synthesizing.
     std::shared_ptr<const SynthesisConstraints> constraints;
@@ -76,6 +106,7 @@ struct SynthesisParams {
     std::shared_ptr<const SynthesisHistory> previous;
     std::shared_ptr<const CoherenceMap> coherence;
     bool record_history = false;  // fill SynthesisOutput::history
+    Drainage drainage = Drainage::Off;  // Breach costs about +100% synthesis time (docs/realism.md)
 };
 
 struct SynthesisOutput {
@@ -109,8 +140,10 @@ public:
                                                        const SynthesizerOptions& options = {});
     virtual ~Synthesizer() = default;
 
-    // Synthesizes `window` of the given output level (0 = finest, up to coarsest_level).
-    // Preconditions: 1 <= width, height <= 16384.
+    // Synthesizes `window` of the given output level: 0 = finest, up to the database's coarsest level
+    // (up to coarsest_level when that is set); levels above the coarsest synthesized one are block
+    // averages of it. Preconditions: 1 <= width, height <= 16384, and at most 16384 pixels per side
+    // of the coarsest synthesized level (an error otherwise).
     virtual Result<SynthesisOutput> synthesize(const PixelWindow& window, const SynthesisParams& params,
                                                int output_level = 0, bool want_sources = false) = 0;
 

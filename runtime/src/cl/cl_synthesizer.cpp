@@ -9,6 +9,8 @@
 #include "cl/cl_runtime.h"
 #include "core/hash.h"
 #include "cl/cl_synthesizer.h"
+#include "synth/initial_patches.h"
+#include "synth/reference_kernels.h"
 #include "synth/synthesis_driver.h"
 
 namespace terrasynth {
@@ -24,8 +26,8 @@ struct RegionArg {
 RegionArg toArg(const synth::LevelRegion& r) { return {r.x, r.y, r.width, r.height}; }
 
 struct DeviceLevel {
-    BufferHandle appearance, candidates, exemplar, rects, heights, seeds, types, type_seeds, seed_ranges;
-    cl_uint seed_count = 0;
+    BufferHandle appearance, candidates, exemplar, rects, heights, cumulative_area, types, type_seeds, seed_ranges;
+    cl_int exemplar_count = 0;
     cl_int width = 0;
     cl_float4 offset{}, scale{};
 };
@@ -63,7 +65,8 @@ public:
                                     std::to_string(kSeedsPerType) + " -DTOLERANCE_SLOPE=" +
                                     std::to_string(kPointToleranceSlope) + "f -DBLEND_SLOPE=" +
                                     std::to_string(kPointBlendSlope) + "f -DCOHERENT_WEIGHT=" +
-                                    std::to_string(kCoherentWeight) + "f";
+                                    std::to_string(kCoherentWeight) + "f -DINIT_PATCH_SIZE=" +
+                                    std::to_string(kInitialPatchSize);
         auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, defines);
         if (!program) return program.status();
         program_ = std::move(program.value());
@@ -116,9 +119,8 @@ private:
             DeviceLevel d;
             std::vector<cl_int4> rects;
             for (const AtlasRect& r : l.rects) rects.push_back({{r.x, r.y, r.width, r.height}});
-            std::vector<uint32_t> seeds;
-            for (const auto& list : l.type_seeds) seeds.insert(seeds.end(), list.begin(), list.end());
-            if (seeds.empty()) return Status::error("database level without seed coordinates");
+            const std::vector<uint32_t> cumulative = synth::cumulativeInteriorAreas(l);
+            if (cumulative.empty() || cumulative.back() == 0) return Status::error("database level without interior pixels");
             auto appearance = upload(l.appearance.data(), l.appearance.size() * sizeof(uint16_t));
             // The k = 2 table of s4 as one uint2 per atlas pixel: C_1(c) = c moved into its exemplar's
             // interior (Lefebvre & Hoppe 2005's identity candidate) and C_2(c) from PatchMatch.
@@ -136,12 +138,12 @@ private:
             auto exemplar = upload(l.exemplar.data(), l.exemplar.size());
             auto rect_buffer = upload(rects.data(), rects.size() * sizeof(cl_int4));
             auto heights = upload(l.height_m.data(), l.height_m.size() * sizeof(float));
-            auto seed_buffer = upload(seeds.data(), seeds.size() * sizeof(uint32_t));
+            auto cumulative_buffer = upload(cumulative.data(), cumulative.size() * sizeof(uint32_t));
             const synth::SeedTable table = synth::seedTable(l);
             auto types = upload(l.type.data(), l.type.size());
             auto type_seeds = upload(table.seeds.data(), table.seeds.size() * sizeof(uint32_t));
             auto seed_ranges = upload(table.ranges.data(), table.ranges.size() * sizeof(int32_t));
-            for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &seed_buffer, &types, &type_seeds,
+            for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &cumulative_buffer, &types, &type_seeds,
                             &seed_ranges})
                 if (!*r) return r->status();
             d.types = std::move(types.value());
@@ -152,8 +154,8 @@ private:
             d.exemplar = std::move(exemplar.value());
             d.rects = std::move(rect_buffer.value());
             d.heights = std::move(heights.value());
-            d.seeds = std::move(seed_buffer.value());
-            d.seed_count = static_cast<cl_uint>(seeds.size());
+            d.cumulative_area = std::move(cumulative_buffer.value());
+            d.exemplar_count = static_cast<cl_int>(cumulative.size());
             d.width = l.width;
             for (int m = 0; m < 4; ++m) d.offset.s[m] = l.appearance_offset[m], d.scale.s[m] = l.appearance_scale[m];
             levels_.push_back(std::move(d));
@@ -182,7 +184,8 @@ private:
         if (!s) return s;
         const DeviceLevel& d = levels_[level];
         ArgSetter args(init_.get(), "init_level");
-        args(current_.get())(toArg(region))(d.seeds.get())(d.seed_count)(d.width)(core::levelSalt(seed, level, 0));
+        args(current_.get())(toArg(region))(d.rects.get())(d.cumulative_area.get())(d.exemplar_count)(
+            core::levelSalt(seed, level, 0));
         if (!args.status()) return args.status();
         return run(init_.get(), region.width, region.height);
     }
@@ -263,6 +266,20 @@ private:
         return run(correct_.get(), count_x, count_y);
     }
 
+    // Breaching runs on the host (drainage_breach.h): the level's state is read back once, breached
+    // and written back.
+    float depthMargin(int level) override { return depth_margins_.at(*db_, level); }
+    Status drain(int level, const synth::LevelRegion& region, int radius, const synth::DrainageInputs& inputs) override {
+        std::vector<synth::PixelState> state(region.pixels());
+        static_assert(sizeof(synth::PixelState) == sizeof(cl_float4), "state layout");
+        TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
+                                        state.data(), 0, nullptr, nullptr));
+        synth::breachPits(db_->levels[level], region, radius, inputs, state);
+        TS_CL_CHECK(clEnqueueWriteBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
+                                         state.data(), 0, nullptr, nullptr));
+        return Status::ok();
+    }
+
     Status resolve(int level, const synth::LevelRegion& region, const synth::LevelRegion& out, SynthesisOutput& output,
                    bool want_sources) override {
         const size_t pixels = out.pixels();
@@ -313,6 +330,7 @@ private:
     cl_uint seed_salt_ = 0;
     size_t current_capacity_ = 0, next_capacity_ = 0;
     size_t local_[2] = {32, 2};
+    synth::DepthMargins depth_margins_;
     double bytes_per_pixel_ = 0.0;
 };
 

@@ -1,6 +1,7 @@
 // Builds the exemplar database (Gain et al. 2015 s4; type pyramid s5.2): read and resample the
 // exemplars, build their Gaussian pyramids, fit one appearance-space PCA per level, pack each
-// level into an atlas, find similar neighbourhoods with PatchMatch, derive the type pyramid.
+// level into an atlas, find similar neighbourhoods with PatchMatch, derive the type pyramid, and
+// mark each exemplar's own closed depressions (for drainage, issue 17).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,6 +12,7 @@
 #include "core/json_reader.h"
 #include "db/db_internal.h"
 #include "terrasynth/limits.h"
+#include "terrasynth/terrain_stats.h"
 
 namespace terrasynth {
 namespace {
@@ -86,6 +88,14 @@ uint16_t quantise(float value, float offset, float scale) {
     return static_cast<uint16_t>(std::clamp(q, 0.0f, 65535.0f));
 }
 
+// DatabaseLevel::closed of one exemplar: the pixels Priority-Flood raises (its edge drains out).
+void markClosedDepressions(const Heightfield& field, const AtlasRect& r, DatabaseLevel& out) {
+    const Heightfield filled = fillDepressions(field, false);
+    for (int y = 0; y < r.height; ++y)
+        for (int x = 0; x < r.width; ++x)
+            out.closed[static_cast<size_t>(r.y + y) * out.width + r.x + x] = filled.at(x, y) > field.at(x, y) ? 1 : 0;
+}
+
 struct LevelInputs {
     std::vector<Heightfield> fields;                 // per exemplar (empty when too small)
     std::vector<db::NeighbourhoodFeatures> features;
@@ -112,6 +122,7 @@ void buildLevel(int level, LevelInputs& in, const DatabaseBuildOptions& options,
     out.appearance.assign(n * 4, 0);
     out.type.assign(n, kNoType);
     out.exemplar.assign(n, kNoExemplar);
+    out.closed.assign(n, 0);
     std::vector<float> match_features(n * kMatchModes, 0.0f);
     std::vector<uint8_t> eligible(n, 0);
 
@@ -156,6 +167,8 @@ void buildLevel(int level, LevelInputs& in, const DatabaseBuildOptions& options,
                               y < r.height - kInteriorMargin;
             }
     }
+    for (size_t e = 0; e < count; ++e)
+        if (!in.features[e].mean.empty()) markClosedDepressions(in.fields[e], out.rects[e], out);
     // Gutter pixels keep the exemplar id (coordinates jittered slightly outside stay attributable)
     // but never take part in matching: mark them kNoExemplar for PatchMatch only.
     std::vector<uint8_t> match_exemplar(out.exemplar);
@@ -191,7 +204,7 @@ size_t DatabaseLevel::memoryBytes() const {
     size_t seeds = 0;
     for (const auto& s : type_seeds) seeds += s.size() * sizeof(uint32_t);
     return height_m.size() * sizeof(float) + appearance.size() * sizeof(uint16_t) + similar.size() * sizeof(uint32_t) +
-           type.size() + exemplar.size() + rects.size() * sizeof(AtlasRect) + seeds;
+           type.size() + exemplar.size() + closed.size() + rects.size() * sizeof(AtlasRect) + seeds;
 }
 
 size_t ExemplarDatabase::basePixelCount() const {

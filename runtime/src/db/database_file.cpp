@@ -105,6 +105,7 @@ std::string serialise(const ExemplarDatabase& db) {
         w.array(l.similar);
         w.array(l.type);
         w.array(l.exemplar);
+        w.array(l.closed);
         w.pod<uint32_t>(static_cast<uint32_t>(l.type_seeds.size()));
         for (const auto& s : l.type_seeds) w.array(s);
     }
@@ -125,7 +126,7 @@ Status checkLevel(const ExemplarDatabase& db, size_t index) {
         return Status::error(where + "atlas size " + std::to_string(l.width) + "x" + std::to_string(l.height) + " out of range");
     const size_t n = l.pixelCount();
     if (l.height_m.size() != n || l.appearance.size() != 4 * n || l.similar.size() != n || l.type.size() != n ||
-        l.exemplar.size() != n || l.rects.size() != db.exemplars.size())
+        l.exemplar.size() != n || l.closed.size() != n || l.rects.size() != db.exemplars.size())
         return Status::error(where + "arrays do not match the atlas size");
     for (int m = 0; m < 4; ++m)
         if (!std::isfinite(l.appearance_offset[m]) || !(l.appearance_scale[m] >= 1e-30f && l.appearance_scale[m] <= 1e6f))
@@ -258,7 +259,7 @@ Result<std::shared_ptr<const ExemplarDatabase>> loadDatabase(const std::string& 
         for (int m = 0; ok && m < 4; ++m) ok = r.pod(&l.appearance_offset[m]);
         for (int m = 0; ok && m < 4; ++m) ok = r.pod(&l.appearance_scale[m]);
         ok = ok && r.array(&l.rects) && r.array(&l.height_m) && r.array(&l.appearance) && r.array(&l.similar) &&
-             r.array(&l.type) && r.array(&l.exemplar) && r.pod(&seed_lists) && seed_lists <= 256;
+             r.array(&l.type) && r.array(&l.exemplar) && r.array(&l.closed) && r.pod(&seed_lists) && seed_lists <= 256;
         l.type_seeds.resize(ok ? seed_lists : 0);
         for (uint32_t s = 0; ok && s < seed_lists; ++s) ok = r.array(&l.type_seeds[s]);
         db->levels.push_back(std::move(l));

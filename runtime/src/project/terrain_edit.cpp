@@ -14,8 +14,9 @@ Status sameSettings(const Project& a, const Project& b, const ExemplarDatabase& 
     const SynthesisParams &p = a.synthesis, &q = b.synthesis;
     if (p.seed != q.seed || p.jitter != q.jitter || p.correction_passes != q.correction_passes ||
         p.coarsest_level != q.coarsest_level || p.first_constrained_level != q.first_constrained_level ||
-        a.hold_point_heights != b.hold_point_heights)
-        return Status::error("the projects' synthesis settings differ (seed, jitter, passes, levels, hold_point_heights)");
+        p.drainage != q.drainage || a.hold_point_heights != b.hold_point_heights)
+        return Status::error("the projects' synthesis settings differ (seed, jitter, passes, levels, drainage, "
+                             "hold_point_heights)");
     return Status::ok();
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/hash.h"
+#include "synth/initial_patches.h"
 
 namespace terrasynth::synth {
 using core::hash3;
@@ -63,20 +64,53 @@ Vec4 neighbourAppearanceQ(const DatabaseLevel& db, const PixelState& s, float vx
 
 }  // namespace
 
+namespace {
+
+int floorDiv(int v, int d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
+
+int mirrorInto(int v, int n) {
+    const int period = 2 * n;
+    int m = v % period;
+    if (m < 0) m += period;
+    return m < n ? m : period - 1 - m;
+}
+
+}  // namespace
+
 void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t seed, int level,
                    std::vector<PixelState>& state) {
-    std::vector<uint32_t> seeds;
-    for (const auto& list : db.type_seeds) seeds.insert(seeds.end(), list.begin(), list.end());
-    TERRASYNTH_REQUIRE(!seeds.empty(), "database level without seed coordinates");
+    const std::vector<uint32_t> cumulative = cumulativeInteriorAreas(db);
+    TERRASYNTH_REQUIRE(!cumulative.empty() && cumulative.back() > 0, "database level without interior pixels");
     state.assign(region.pixels(), PixelState{});
     const uint32_t salt = levelSalt(seed, level, 0);
+    const int cell = kInitialPatchSize;
     for (int ly = 0; ly < region.height; ++ly)
         for (int lx = 0; lx < region.width; ++lx) {
-            const uint32_t pick = seeds[hash3(region.x + lx, region.y + ly, salt) % seeds.size()];
+            const int gx = region.x + lx, gy = region.y + ly;
+            const int cx = floorDiv(gx, cell), cy = floorDiv(gy, cell);
+            int best = 0x7fffffff, site_x = 0, site_y = 0, cell_x = 0, cell_y = 0;
+            for (int j = -1; j <= 1; ++j)
+                for (int i = -1; i <= 1; ++i) {
+                    const int sx = (cx + i) * cell + static_cast<int>(hash3(cx + i, cy + j, salt) % static_cast<uint32_t>(cell));
+                    const int sy = (cy + j) * cell + static_cast<int>(hash3(cx + i, cy + j, salt ^ 0x1u) % static_cast<uint32_t>(cell));
+                    const int d = (sx - gx) * (sx - gx) + (sy - gy) * (sy - gy);
+                    if (d < best) {
+                        best = d;
+                        site_x = sx, site_y = sy, cell_x = cx + i, cell_y = cy + j;
+                    }
+                }
+            const uint32_t pick = hash3(cell_x, cell_y, salt ^ 0x2u) % cumulative.back();
+            size_t e = 0;
+            while (e + 1 < cumulative.size() && pick >= cumulative[e]) ++e;
+            const AtlasRect& r = db.rects[e];
+            const int iw = r.width - 2 * kInteriorMargin, ih = r.height - 2 * kInteriorMargin;
+            const int ox = static_cast<int>(hash3(cell_x, cell_y, salt ^ 0x3u) % static_cast<uint32_t>(iw));
+            const int oy = static_cast<int>(hash3(cell_x, cell_y, salt ^ 0x4u) % static_cast<uint32_t>(ih));
             PixelState& s = state[static_cast<size_t>(ly) * region.width + lx];
-            s.x = static_cast<float>(pick % static_cast<uint32_t>(db.width));
-            s.y = static_cast<float>(pick / static_cast<uint32_t>(db.width));
+            s.x = static_cast<float>(r.x + kInteriorMargin + mirrorInto(ox + gx - site_x, iw));
+            s.y = static_cast<float>(r.y + kInteriorMargin + mirrorInto(oy + gy - site_y, ih));
             s.v = 0.0f;
+            s.ceiling = INFINITY;  // no drainage ceiling
         }
 }
 
@@ -107,6 +141,7 @@ void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& chil
             c.x = static_cast<float>(cr.x) + cx;
             c.y = static_cast<float>(cr.y) + cy;
             c.v = p.v;  // eq. 2
+            c.ceiling = p.ceiling;  // the drainage ceiling (issue 17)
         }
 }
 
@@ -247,15 +282,19 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
             }
             float v = best_h * scale[0];
             if (keep_v) v = context.previous.v[pixel];
-            if (!keep_v && !constraints.blend.empty()) {
-                // s5.1: the blended target of the constraints reaching this pixel.
-                const float* sums = &constraints.blend[(static_cast<size_t>(ly) * region.width + lx) * 4];
-                if (sums[0] > 0.0f) {
-                    // h_c = E(q) + V, the candidate's own height (see synthesis.cl).
-                    const float candidate_height = db.height_m[static_cast<size_t>(best_q)] + v;
-                    v = v + phiD(sums[1] / sums[0] - candidate_height, sums[2] / sums[0], kPointToleranceSlope, kPointBlendSlope);
-                }
+            const float ceiling = state[pixel].ceiling;
+            // s5.1: the blended target of the constraints reaching this pixel.
+            const float* sums =
+                constraints.blend.empty() ? nullptr : &constraints.blend[(static_cast<size_t>(ly) * region.width + lx) * 4];
+            const bool constrained = sums && sums[0] > 0.0f;
+            if (constrained && !keep_v) {
+                // h_c = E(q) + V, the candidate's own height (see synthesis.cl).
+                const float candidate_height = db.height_m[static_cast<size_t>(best_q)] + v;
+                v = v + phiD(sums[1] / sums[0] - candidate_height, sums[2] / sums[0], kPointToleranceSlope, kPointBlendSlope);
             }
+            // Drainage (issue 17): carved channels stay at or below their carved height; constraints
+            // win over channels.
+            if (ceiling < INFINITY && !constrained) v = std::fmin(v, ceiling - db.height_m[static_cast<size_t>(best_q)]);
             PixelState& out = state[static_cast<size_t>(ly) * region.width + lx];
             out.x = static_cast<float>(best_q % db.width);
             out.y = static_cast<float>(best_q / db.width);

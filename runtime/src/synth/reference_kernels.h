@@ -12,12 +12,14 @@
 
 namespace terrasynth::synth {
 
-// Per synthesis pixel: exemplar atlas coordinate S (x, y), height offset V, and a spare lane.
+// Per synthesis pixel: exemplar atlas coordinate S (x, y), height offset V, and the drainage ceiling
+// (issue 17, synth/drainage_breach.h): the height a channel carved at the coarser level must not
+// rise above; +infinity where there is none.
 struct PixelState {
-    float x = 0, y = 0, v = 0, spare = 0;
+    float x = 0, y = 0, v = 0, ceiling = 0;
 };
 
-// Coarsest level: random interior coordinates from the per-type seed lists, V = 0.
+// Coarsest level: irregular patches of exemplar coordinates (synth/initial_patches.h), V = 0.
 void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t seed, int level,
                    std::vector<PixelState>& state);
 

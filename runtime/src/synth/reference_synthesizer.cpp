@@ -11,7 +11,7 @@ namespace {
 
 class ReferenceSteps final : public SynthesisSteps {
 public:
-    explicit ReferenceSteps(const ExemplarDatabase& db) : db_(db) {}
+    ReferenceSteps(const ExemplarDatabase& db, DepthMargins& margins) : db_(db), margins_(margins) {}
     Status init(int level, const LevelRegion& region, uint32_t seed) override {
         referenceInit(db_.levels[level], region, seed, level, current_);
         return Status::ok();
@@ -51,6 +51,11 @@ public:
         referenceCorrect(db_.levels[level], region, px, py, inset, context_, current_);
         return Status::ok();
     }
+    float depthMargin(int level) override { return margins_.at(db_, level); }
+    Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) override {
+        breachPits(db_.levels[level], region, radius, inputs, current_);
+        return Status::ok();
+    }
     Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
                    bool want_sources) override {
         referenceResolve(db_.levels[level], region, current_, out, output.heights.heights.data(),
@@ -61,6 +66,7 @@ public:
 
 private:
     const ExemplarDatabase& db_;
+    DepthMargins& margins_;
     std::vector<PixelState> current_;
     CorrectionContext context_;
 };
@@ -70,7 +76,7 @@ public:
     explicit ReferenceSynthesizer(std::shared_ptr<const ExemplarDatabase> db) : Synthesizer(std::move(db)) {}
     Result<SynthesisOutput> synthesize(const PixelWindow& window, const SynthesisParams& params, int output_level,
                                        bool want_sources) override {
-        ReferenceSteps steps(*db_);
+        ReferenceSteps steps(*db_, margins_);
         size_t peak = 0;
         auto out = runSynthesis(*db_, window, params, output_level, want_sources, steps, &peak);
         if (out) bytes_per_pixel_ = static_cast<double>(peak * sizeof(PixelState)) / (window.width * window.height) +
@@ -82,6 +88,7 @@ public:
 
 private:
     double bytes_per_pixel_ = 0.0;
+    DepthMargins margins_;
 };
 
 }  // namespace

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "synth/initial_patches.h"
+
 namespace terrasynth::synth {
 
 int coarsestLevel(const ExemplarDatabase& db, const SynthesisParams& params) {
-    return params.coarsest_level < 0 ? db.levelCount() - 1 : params.coarsest_level;
+    return params.coarsest_level < 0 ? automaticCoarsestLevel(db) : params.coarsest_level;
 }
 
 Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, const SynthesisParams& params,
@@ -21,11 +23,18 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
     const int coarsest = coarsestLevel(db, params);
     if (coarsest < 0 || coarsest >= db.levelCount())
         return Status::error("coarsest_level must be -1 or 0.." + std::to_string(db.levelCount() - 1));
-    if (output_level < 0 || output_level > coarsest)
-        return Status::error("output level must be 0.." + std::to_string(coarsest));
+    // Above the coarsest synthesized level the output is a block average of it (synthesis_driver.h).
+    const int highest = params.coarsest_level < 0 ? db.levelCount() - 1 : coarsest;
+    if (output_level < 0 || output_level > highest)
+        return Status::error("output level must be 0.." + std::to_string(highest));
     if (window.width < 1 || window.height < 1 || window.width > 16384 || window.height > 16384)
         return Status::error("window size must be 1..16384 per side, got " + std::to_string(window.width) + "x" +
                              std::to_string(window.height));
+    const int above = std::max(0, output_level - coarsest);
+    if ((static_cast<int64_t>(window.width) << above) > 16384 || (static_cast<int64_t>(window.height) << above) > 16384)
+        return Status::error("window of " + std::to_string(window.width) + "x" + std::to_string(window.height) +
+                             " at level " + std::to_string(output_level) + " covers more than 16384 pixels per side of level " +
+                             std::to_string(coarsest) + ", the coarsest synthesized");
     // Compared without negating: -INT64_MIN does not exist.
     if (window.x < -kMaxGlobalCoordinate || window.x > kMaxGlobalCoordinate || window.y < -kMaxGlobalCoordinate ||
         window.y > kMaxGlobalCoordinate)
@@ -61,31 +70,92 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
     return Status::ok();
 }
 
+namespace {
+
+// Correction passes of a level: the coarsest one gets kCoarsestLevelExtraPasses more
+// (initial_patches.h).
+int passesAt(const SynthesisParams& params, int level, int coarsest) {
+    return params.correction_passes + (level == coarsest && params.correction_passes > 0 ? kCoarsestLevelExtraPasses : 0);
+}
+
+// Pixels each level reads beyond the plan's uniform correction margin: the coarsest level's extra
+// passes, and the drainage step's reach (drainage_breach.h).
+std::vector<int> extraMargins(const SynthesisParams& params, int coarsest) {
+    std::vector<int> margins(coarsest + 1, 0);
+    margins[coarsest] = kSubpassReach * 4 * (passesAt(params, coarsest, coarsest) - params.correction_passes);
+    if (params.drainage == Drainage::Breach)
+        for (int level = 0; level <= coarsest; ++level) margins[level] += 2 * breachRadius(level) + 1;
+    return margins;
+}
+
+// Output levels above the coarsest synthesized level M: the window's 2^d x 2^d blocks of level M
+// averaged (d = output_level - M), so every output level shows the same terrain. Sources are those
+// of each block's first pixel, scaled to the output level.
+Result<SynthesisOutput> blockAverageOfCoarsest(const ExemplarDatabase& db, const PixelWindow& window,
+                                               const SynthesisParams& params, int output_level, int coarsest,
+                                               bool want_sources, SynthesisSteps& steps, size_t* peak_state_pixels) {
+    const int d = output_level - coarsest, block = 1 << d;
+    const PixelWindow fine{window.x * block, window.y * block, window.width * block, window.height * block};
+    auto synthesized = runSynthesis(db, fine, params, coarsest, want_sources, steps, peak_state_pixels);
+    if (!synthesized) return synthesized.status();
+    const SynthesisOutput& in = synthesized.value();
+    SynthesisOutput out;
+    out.heights = Heightfield(window.width, window.height, db.meters_per_pixel * std::ldexp(1.0, output_level));
+    if (want_sources) {
+        out.source_x.resize(out.heights.size());
+        out.source_y.resize(out.heights.size());
+        out.source_exemplar.resize(out.heights.size());
+    }
+    const float scale = 1.0f / static_cast<float>(block);
+    for (int y = 0; y < window.height; ++y)
+        for (int x = 0; x < window.width; ++x) {
+            double sum = 0.0;
+            for (int by = 0; by < block; ++by)
+                for (int bx = 0; bx < block; ++bx) sum += in.heights.at(x * block + bx, y * block + by);
+            const size_t o = static_cast<size_t>(y) * window.width + x;
+            out.heights.heights[o] = static_cast<float>(sum / static_cast<double>(block * block));
+            if (!want_sources) continue;
+            const size_t first = static_cast<size_t>(y) * block * fine.width + static_cast<size_t>(x) * block;
+            out.source_x[o] = in.source_x[first] * scale;
+            out.source_y[o] = in.source_y[first] * scale;
+            out.source_exemplar[o] = in.source_exemplar[first];
+        }
+    out.history = in.history;
+    return out;
+}
+
+}  // namespace
+
 Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWindow& window,
                                      const SynthesisParams& params, int output_level, bool want_sources,
                                      SynthesisSteps& steps, size_t* peak_state_pixels) {
     Status valid = validateRequest(db, window, params, output_level);
     if (!valid) return valid;
     const int coarsest = coarsestLevel(db, params);
-    const SynthesisPlan plan = planSynthesis(window, output_level, coarsest, params.correction_passes);
+    if (output_level > coarsest)
+        return blockAverageOfCoarsest(db, window, params, output_level, coarsest, want_sources, steps, peak_state_pixels);
+    const bool drain = params.drainage == Drainage::Breach;
+    const SynthesisPlan plan =
+        planSynthesis(window, output_level, coarsest, params.correction_passes, extraMargins(params, coarsest));
     size_t peak = 0;
     auto history = params.record_history ? std::make_shared<SynthesisHistory>() : nullptr;
     if (history) history->levels.resize(coarsest + 1);
     auto correctLevel = [&](int level) -> Status {
         const LevelRegion& region = plan.regions[level];
-        Status begun = steps.beginLevel(
-            level, region,
+        const LevelConstraints constraints =
             constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, params.hold_on_free_levels,
-                                region, db.meters_per_pixel),
-            params.previous ? coherenceCodes(params.coherence.get(), level, region) : std::vector<uint8_t>(),
-            params.seed);
+                                region, db.meters_per_pixel);
+        const std::vector<uint8_t> coherence =
+            params.previous ? coherenceCodes(params.coherence.get(), level, region) : std::vector<uint8_t>();
+        Status begun = steps.beginLevel(level, region, constraints, coherence, params.seed);
         if (!begun) return begun;
+        const int passes = passesAt(params, level, coarsest);
         if (history) {
             history->levels[level] = {region.x, region.y, region.width, region.height, {}};
-            history->levels[level].passes.resize(params.correction_passes);
+            history->levels[level].passes.resize(passes + (drain ? 1 : 0));
         }
         int subpass = 0;
-        for (int pass = 0; pass < params.correction_passes; ++pass) {
+        for (int pass = 0; pass < passes; ++pass) {
             Status s = steps.beginPass(level, region, previousPass(params.previous.get(), level, pass, region));
             if (!s) return s;
             for (const auto& parity : kSubpassParity) {
@@ -98,7 +168,13 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
                 if (!s) return s;
             }
         }
-        return Status::ok();
+        if (!drain) return Status::ok();
+        // Issue 17: breach the level's pits; frozen pixels take the previous synthesis's drained state.
+        const PassHistory drained = previousPass(params.previous.get(), level, passes, region);
+        Status s = steps.drain(level, region, breachRadius(level),
+                               {&coherence, &drained, &constraints.blend, steps.depthMargin(level)});
+        if (!s) return s;
+        return history ? steps.recordPass(level, region, history->levels[level].passes.back()) : Status::ok();
     };
     Status s = steps.init(coarsest, plan.regions[coarsest], params.seed);
     if (!s) return s;

@@ -4,6 +4,7 @@
 
 #include "synth/coherence_fields.h"
 #include "synth/constraint_fields.h"
+#include "synth/drainage_breach.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/synthesizer.h"
 
@@ -27,6 +28,10 @@ public:
     // Corrects the pixels of one parity class at least `inset` pixels inside the region: the ring
     // outside would be spoiled by the margin anyway (synthesis_plan.h), so it is not computed.
     virtual Status correct(int level, const LevelRegion& region, int parity_x, int parity_y, int inset) = 0;
+    // Drainage (drainage_breach.h): breaches the level's pits after its correction passes.
+    virtual Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) = 0;
+    // breachDepthMargin of a level, cached by the backend.
+    virtual float depthMargin(int level) = 0;
     virtual Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
                            bool want_sources) = 0;
 };

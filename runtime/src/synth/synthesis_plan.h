@@ -3,7 +3,7 @@
 // Correction reads neighbours up to 2 pixels away (eq. 3-6), so each subpass spoils a 2-pixel ring
 // at the border of what was computed; upsampling reads the parent pixel floor(p/2). Working from the
 // output window up to the coarsest level, each level's region is its children's parents plus
-// 2 * 4 * passes pixels. Everything is addressed in global pixel coordinates and all randomness is a
+// 2 * 4 * passes pixels (plus the drainage step's reach, when it runs). Everything is addressed in global pixel coordinates and all randomness is a
 // hash of global coordinates, so the output window is exactly what a larger computation would give.
 #pragma once
 
@@ -36,7 +36,10 @@ constexpr int kSubpassParity[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
 // Global coordinates must stay well inside int32 at every level.
 constexpr int64_t kMaxGlobalCoordinate = limits::kMaxWindowOrigin;
 
-SynthesisPlan planSynthesis(const PixelWindow& window, int output_level, int coarsest_level, int passes);
+// extra_margin[level] (optional): pixels a step after the level's correction reads beyond what it
+// must produce (drainage); added to that level's margin.
+SynthesisPlan planSynthesis(const PixelWindow& window, int output_level, int coarsest_level, int passes,
+                            const std::vector<int>& extra_margin = {});
 
 // Floor division for negative global coordinates.
 inline int floorDiv2(int v) { return v >> 1; }  // arithmetic shift = floor for two's complement

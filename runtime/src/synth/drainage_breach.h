@@ -1,0 +1,66 @@
+// Private: drainage by bounded least-cost breaching (issue 17; Lindsay 2016), one synthesis level at
+// a time, after its correction passes (terrasynth/synthesizer.h, Drainage::Breach).
+//
+// Pixel-based synthesis leaves closed depressions that real fluvial terrain does not have: patches
+// placed side by side dam each other's valleys. Every pit of the level (a pixel lower than its 8
+// neighbours in (height, global row, global column) order, so flat-bottomed pits count once) looks
+// for the cheapest path, within `radius` pixels (Chebyshev) of it, to a pixel at least
+// `depth_margin` lower than itself (else to the first strictly lower one it met); cost = metres
+// above the pit summed along the path (plus a millimetre per pixel, so the shorter of equal paths
+// wins). The path is carved to a straight profile from the pit down to that
+// pixel by lowering V. Paths are searched on the heights before any carving and combined by taking
+// the lowest carve, so the result does not depend on the order of pits; a pixel depends only on
+// heights within 2 * radius + 1 of it (the reach the window plan adds to the level's margin).
+// The carved heights become the pixels' ceilings (PixelState::ceiling, +inf elsewhere), which the
+// next level's correction does not exceed: the channel survives the next level, whose candidates
+// re-detail it from the exemplars, and whose own breaching repairs what its detail dams again.
+//
+// Frozen pixels (s5.3) take their recorded post-breach state and are never carved; pixels under a
+// point or curve constraint are never carved either. A path may end at such a pixel, not cross it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "synth/coherence_fields.h"
+#include "synth/reference_kernels.h"
+
+namespace terrasynth::synth {
+
+// The depth below the pit a path should reach (DrainageInputs::depth_margin) as a fraction of the
+// level's median 3x3 relief: the finer levels add detail that lowers the floor of a drained basin,
+// and a channel that ends barely below the old floor would leave the new one closed again.
+constexpr float kBreachDepthFraction = 0.5f;
+// kBreachDepthFraction times the median 3x3 relief of the level's exemplar pixels (every other
+// row and column), in metres. Cost: a pass over a quarter of the level's atlas.
+float breachDepthMargin(const DatabaseLevel& db);
+
+// breachDepthMargin per level, computed on first use (a synthesizer owns one; not thread-safe).
+class DepthMargins {
+public:
+    float at(const ExemplarDatabase& db, int level);
+
+private:
+    std::vector<float> margins_;
+    std::vector<uint8_t> known_;
+};
+
+struct DrainageInputs {
+    const std::vector<uint8_t>* coherence = nullptr;  // W codes per region pixel; empty: none frozen
+    const PassHistory* drained = nullptr;             // previous synthesis after breaching; may be empty
+    const std::vector<float>* blend = nullptr;        // constraint sums, 4 per region pixel; may be empty
+    float depth_margin = 0.0f;                         // breachDepthMargin of the level, metres
+};
+
+struct BreachCounts {
+    size_t pits = 0;      // pits found in the region
+    size_t breached = 0;  // of them, drained by a carved path
+};
+
+// Breaches the region's pits (see above), lowering V along carved paths and setting every pixel's
+// ceiling. Runs on the host for both backends: the search is sparse and irregular (about one pixel
+// in a hundred is a pit), and the same code on both sides keeps them bit-identical.
+BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int radius, const DrainageInputs& inputs,
+                        std::vector<PixelState>& state);
+
+}  // namespace terrasynth::synth
