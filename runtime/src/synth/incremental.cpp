@@ -80,8 +80,9 @@ Result<IncrementalTerrain> IncrementalTerrain::restore(Synthesizer& synthesizer,
         return Status::error("restored heights do not cover the extent");
     if (frozen.size() != pixels) return Status::error("restored frozen mask does not cover the extent");
     // The history must be the one a synthesis of the extent records: same regions, same passes.
-    const synth::SynthesisPlan plan = synth::planSynthesis(extent, 0, synth::coarsestLevel(synthesizer.database(), terrain.params_),
-                                                           terrain.params_.correction_passes);
+    const int coarsest = synth::coarsestLevel(synthesizer.database(), terrain.params_);
+    const synth::SynthesisPlan plan = synth::planSynthesis(extent, 0, coarsest, terrain.params_.correction_passes,
+                                                           synth::extraMargins(terrain.params_, coarsest));
     if (history.levels.size() != plan.regions.size())
         return Status::error("restored history has " + std::to_string(history.levels.size()) + " levels, the synthesis " +
                              std::to_string(plan.regions.size()));
@@ -90,7 +91,7 @@ Result<IncrementalTerrain> IncrementalTerrain::restore(Synthesizer& synthesizer,
         const auto& got = history.levels[level];
         const size_t n = static_cast<size_t>(got.width) * got.height;
         bool fits = got.x == want.x && got.y == want.y && got.width == want.width && got.height == want.height &&
-                    got.passes.size() == static_cast<size_t>(terrain.params_.correction_passes);
+                    got.passes.size() == static_cast<size_t>(synth::historyPassesAt(terrain.params_, static_cast<int>(level), coarsest));
         for (const auto& pass : got.passes) fits = fits && pass.index.size() == n && pass.v.size() == n;
         if (!fits) return Status::error("restored history level " + std::to_string(level) + " does not fit the extent");
     }
@@ -539,7 +540,8 @@ constexpr int kFirstHistoryPlane = 2;
 
 void IncrementalTerrain::swapJournal(Journal& journal) {
     if (!journal.tiles_) return;
-    const int passes = params_.correction_passes;
+    // History planes are numbered with a fixed stride per level: levels record different pass counts.
+    const int passes = synth::kMaxHistoryPassesPerLevel;
     journal.tiles_->swap([&](int id) -> detail::JournalPlane {
         if (id == 0) return {heights_.heights.data(), heights_.width, heights_.height, sizeof(float)};
         if (id == 1) return {frozen_.data(), extent_.width, extent_.height, 1};
@@ -559,7 +561,8 @@ void IncrementalTerrain::record(int plane, int64_t x, int64_t y, int64_t w, int6
 void IncrementalTerrain::recordHistory(int level, int64_t gx, int64_t gy, int64_t w, int64_t h) {
     if (!journal_) return;
     auto& l = history_->levels[level];
-    const int passes = params_.correction_passes;
+    const int passes = synth::kMaxHistoryPassesPerLevel;
+    TERRASYNTH_REQUIRE(l.passes.size() <= static_cast<size_t>(passes), "more history passes than planes per level");
     for (int pass = 0; pass < static_cast<int>(l.passes.size()); ++pass) {
         const int id = kFirstHistoryPlane + 2 * (level * passes + pass);
         journal_->record(id, {l.passes[pass].index.data(), l.width, l.height, sizeof(uint32_t)}, gx - l.x, gy - l.y, w, h);

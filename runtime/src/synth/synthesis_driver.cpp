@@ -70,16 +70,14 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
     return Status::ok();
 }
 
-namespace {
-
-// Correction passes of a level: the coarsest one gets kCoarsestLevelExtraPasses more
-// (initial_patches.h).
 int passesAt(const SynthesisParams& params, int level, int coarsest) {
     return params.correction_passes + (level == coarsest && params.correction_passes > 0 ? kCoarsestLevelExtraPasses : 0);
 }
 
-// Pixels each level reads beyond the plan's uniform correction margin: the coarsest level's extra
-// passes, and the drainage step's reach (drainage_breach.h).
+int historyPassesAt(const SynthesisParams& params, int level, int coarsest) {
+    return passesAt(params, level, coarsest) + (params.drainage == Drainage::Breach ? 1 : 0);
+}
+
 std::vector<int> extraMargins(const SynthesisParams& params, int coarsest) {
     std::vector<int> margins(coarsest + 1, 0);
     margins[coarsest] = kSubpassReach * 4 * (passesAt(params, coarsest, coarsest) - params.correction_passes);
@@ -87,6 +85,8 @@ std::vector<int> extraMargins(const SynthesisParams& params, int coarsest) {
         for (int level = 0; level <= coarsest; ++level) margins[level] += 2 * breachRadius(level) + 1;
     return margins;
 }
+
+namespace {
 
 // Output levels above the coarsest synthesized level M: the window's 2^d x 2^d blocks of level M
 // averaged (d = output_level - M), so every output level shows the same terrain. Sources are those

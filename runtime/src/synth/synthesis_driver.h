@@ -10,6 +10,18 @@
 
 namespace terrasynth::synth {
 
+// Correction passes of `level` when `coarsest` is the coarsest synthesized level: the coarsest one
+// gets kCoarsestLevelExtraPasses more (initial_patches.h).
+int passesAt(const SynthesisParams& params, int level, int coarsest);
+// Passes a SynthesisHistory records at `level`: the correction passes, plus the drained state when
+// drainage is on (synthesizer.h).
+int historyPassesAt(const SynthesisParams& params, int level, int coarsest);
+// Pixels each level reads beyond the plan's uniform correction margin: the coarsest level's extra
+// passes, and the drainage step's reach (drainage_breach.h); planSynthesis's extra_margin.
+std::vector<int> extraMargins(const SynthesisParams& params, int coarsest);
+// Most passes any level records (4 correction passes + the extra ones + drainage).
+constexpr int kMaxHistoryPassesPerLevel = 8;
+
 class SynthesisSteps {
 public:
     virtual ~SynthesisSteps() = default;
