@@ -11,19 +11,12 @@
 
 #include "terrasynth_plugin/headless_view.h"
 #include "terrasynth_plugin/terrain_node.h"
+#include "plugin_test_options.h"
 #include "test_support.h"
 
 namespace terrasynth::plugin {
 namespace {
 
-TerrainNodeOptions smallTiles() {
-    TerrainNodeOptions o;
-    o.tile_size = 64;
-    o.max_level = 4;
-    o.threads = 2;
-    o.pixel_error = 4.0f;
-    return o;
-}
 
 struct Fixture {
     Heightfield dem = test::loadExemplarField("orom_alaska");
