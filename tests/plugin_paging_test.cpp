@@ -12,6 +12,7 @@
 
 #include "terrasynth_plugin/headless_view.h"
 #include "terrasynth_plugin/terrain_node.h"
+#include "plugin_test_options.h"
 #include "test_support.h"
 
 namespace terrasynth::plugin {
@@ -40,14 +41,6 @@ struct Fixture {
     }
 };
 
-TerrainNodeOptions smallTiles() {
-    TerrainNodeOptions o;
-    o.tile_size = 64;
-    o.max_level = 4;
-    o.threads = 2;
-    o.pixel_error = 4.0f;
-    return o;
-}
 
 bool isAncestor(TileKey a, const TileKey& b) {  // a strictly coarser and containing b
     if (a.level <= b.level) return false;
