@@ -220,9 +220,10 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
     float best_cost = INFINITY, best_h = 0.0f;
     int best_q = -1;
     bool keep_v = false;
-    if (use_prev && prev_index[pixel] != NO_PREVIOUS) {
+    if (use_prev && prev_index[pixel] != NO_PREVIOUS &&
+        (target == 0u || ((target >> atlas_type[prev_index[pixel]]) & 1u) != 0u)) {
         // s5.3: the previous result of this level and pass is the first candidate, its cost
-        // multiplied by W.
+        // multiplied by W; s5.2: only when it is of a painted type, so a repainted pixel can change.
         const int q = (int)prev_index[pixel];
         const uchar code = coherence[pixel];
         float h;

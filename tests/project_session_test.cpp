@@ -238,6 +238,29 @@ TEST(EditSession, FortyRandomEditsUndoRedoSaveReopen) {
     EXPECT_TRUE(sameBits(extentOf(**lost).heights, extentOf(**afresh).heights));
 }
 
+// s5.2 through the session: a stroke repainted with another type must change the terrain under it,
+// since its pixels now draw from other exemplars (the previous result may not win by coherence).
+TEST(EditSession, RepaintingAStrokeWithAnotherTypeChangesIt) {
+    const std::string dir = test::scratchDir("session_repaint");
+    auto session = openSession(writeProject(dir, 5));
+    ASSERT_TRUE(session);
+    const std::vector<std::string>& names = session->database().type_names;
+    ASSERT_GE(names.size(), 2u);
+    const std::vector<std::pair<double, double>> stroke = {{kOriginX + 40.0, kOriginY + 96.0}, {kOriginX + 150.0, kOriginY + 96.0}};
+    for (size_t i = 0; i < names.size(); ++i) {
+        ASSERT_TRUE(session->paintTypes(stroke, 24, names[i]));
+        const std::vector<float> before = session->heights().heights;
+        const std::string& next = names[(i + 1) % names.size()];
+        auto changed = session->paintTypes(stroke, 24, next);
+        ASSERT_TRUE(changed) << changed.message();
+        EXPECT_GT(changed->width, 0) << names[i] << " -> " << next << " changed nothing";
+        const size_t centre = static_cast<size_t>(96) * kSize + 95;  // on the stroke
+        EXPECT_NE(before[centre], session->heights().heights[centre]) << names[i] << " -> " << next;
+        ASSERT_TRUE(session->undo());
+        ASSERT_TRUE(session->undo());
+    }
+}
+
 TEST(EditSession, HeightSourceIsTheSessionAndTheWorldAroundIt) {
     const std::string dir = test::scratchDir("session_source");
     auto session = openSession(writeProject(dir, 11));

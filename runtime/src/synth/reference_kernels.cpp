@@ -217,11 +217,15 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                     out.v = context.previous.v[pixel];
                     continue;
                 }
-                float h;
-                best_cost = candidateCost(db, ns, q, weight, code == Coherence::Free ? 1.0f : kCoherentWeight, &h);
-                best_q = q;
-                best_h = h;
-                keep_v = code != Coherence::Free;  // coherent pixels keep their offset, so it cannot drift
+                // A repainted pixel's previous source competes only when it is of a painted type
+                // (s5.2 rejects every other candidate; without this an edit could never repaint).
+                if (target == 0u || ((target >> db.type[q]) & 1u) != 0u) {
+                    float h;
+                    best_cost = candidateCost(db, ns, q, weight, code == Coherence::Free ? 1.0f : kCoherentWeight, &h);
+                    best_q = q;
+                    best_h = h;
+                    keep_v = code != Coherence::Free;  // coherent pixels keep their offset, so it cannot drift
+                }
             }
             // Candidates (eq. 3): C_j(S(p + D) - D) for the 3x3 neighbours D and j = 1, 2. (The kernel
             // skips sources already evaluated; with ties keeping the first, the winner is the same.)
