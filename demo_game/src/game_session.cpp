@@ -81,6 +81,7 @@ private:
     void buildHud(double frame_ms);
     void measureHeightAt();
     bool settle(int max_frames);
+    bool waitForStartView();
     void checkHoles(osg::Image& image);
     void replayCameraPath();
     void finish();
@@ -229,7 +230,7 @@ bool Session::waitForStartGround() {
         if (const auto g = world_.ground->sample(aircraft_.x, aircraft_.y)) {
             aircraft_.z = g->height_m + kCruiseHeight;
             safe_point_ = aircraft_;
-            return true;
+            return waitForStartView();
         }
         const bool open = host_->beginFrame() && !g_stop_requested;
         drawLoading("finding the ground under the start", 1.0, secondsSince(t0));
@@ -242,6 +243,26 @@ bool Session::waitForStartGround() {
             return false;
         }
     }
+}
+
+// The loading screen stays until every tile the first view wants is drawn: the flight never opens
+// on a half-built world with the sky showing through it (the coarse tiles over the whole view
+// radius take a few seconds on two cores). Bounded, like settle(): a view that never settles
+// starts anyway.
+bool Session::waitForStartView() {
+    const auto t0 = Clock::now();
+    for (int f = 0; f < kMaxSettleFrames; ++f) {
+        const plugin::TerrainStats ts = world_.node->stats();
+        if (f > 2 && world_.node->settled()) return true;
+        const bool open = host_->beginFrame() && !g_stop_requested;
+        applyCamera(chaseCamera(aircraft_, [this](double x, double y) { return cameraGround(x, y); }));
+        const double wanted = static_cast<double>(std::max<size_t>(1, ts.wanted_tiles));
+        drawLoading("building the terrain in view", std::min(1.0, static_cast<double>(ts.drawn_tiles) / wanted),
+                    secondsSince(t0));
+        host_->endFrame();
+        if (!open) return false;
+    }
+    return true;
 }
 
 // --- the frame loop ----------------------------------------------------------------------------
