@@ -86,14 +86,16 @@ LevelConstraints heldOwnPixels(const SynthesisConstraints& constraints, int leve
 }  // namespace
 
 LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
-                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0) {
+                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0,
+                                     int coarsest_level) {
     LevelConstraints out;
     if (!constraints) return out;
     if (level < first_level) return hold_free_levels ? heldOwnPixels(*constraints, level, region, meters_per_pixel0) : out;
     if (!constraints->points.empty() || !constraints->curves.empty()) {
         out.blend.assign(region.pixels() * 4, 0.0f);
         for (const PointConstraint& p : constraints->points)
-            accumulatePoint(p, level, region, meters_per_pixel0, 1.0f, out.blend);
+            accumulatePoint(p, level, region, meters_per_pixel0, 1.0f, out.blend,
+                            level == coarsest_level ? std::max(p.radius_px, 1.0f) : 0.0);
         if (!constraints->curves.empty()) addCurveSums(constraints->curves, level, region, meters_per_pixel0, false, out.blend);
         if (!anyBlend(out.blend)) out.blend.clear();
     }

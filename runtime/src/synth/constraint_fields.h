@@ -28,8 +28,12 @@ struct LevelConstraints {
 // Below `first_level` (SynthesisParams::first_constrained_level) nothing, or with `hold_free_levels`
 // (SynthesisParams::hold_on_free_levels) the constraints' own pixels only: the points' 7x7 sites,
 // and the curves within the usual localisation but held softly (accumulateCurve, curve_raster.h).
+// At `coarsest_level` (the coarsest synthesized) a point acts over its whole radius: the levels above
+// it, where its localisation 4 * 2^level would have reached that far, are no longer synthesized
+// (issue 16), and without them the slope asked for over the radius was never pulled into place.
 LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
-                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0);
+                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0,
+                                     int coarsest_level);
 
 // Half the width of a point's own 7x7 pixels (level-0 pixels from the site): held on the free levels
 // so the slope seen over them holds.
