@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <queue>
+#include <thread>
 
 namespace terrasynth {
 
@@ -161,26 +162,55 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     const std::vector<uint8_t> fixed = protectedPixels(db, inputs, state);
     std::vector<float> z(state.size());
     for (size_t i = 0; i < z.size(); ++i) z[i] = heightAt(db, state[i]);
-    std::vector<float> ceiling(z.size(), INFINITY);
-    PathSearch search(radius);
-    BreachCounts counts;
+    // Pits that can reach the needed pixels: within `radius` of them (interior pixels only).
+    int x0 = 1, y0 = 1, x1 = w - 2, y1 = h - 2;
+    if (inputs.needed.width > 0 && inputs.needed.height > 0) {
+        x0 = std::max(x0, inputs.needed.x - region.x - radius), y0 = std::max(y0, inputs.needed.y - region.y - radius);
+        x1 = std::min(x1, inputs.needed.x - region.x + inputs.needed.width - 1 + radius);
+        y1 = std::min(y1, inputs.needed.y - region.y + inputs.needed.height - 1 + radius);
+    }
 
-    for (int y = 1; y + 1 < h; ++y)
-        for (int x = 1; x + 1 < w; ++x) {
-            if (!isPit(z, w, y * w + x)) continue;
-            ++counts.pits;
-            if (copiedFromClosedDepression(db, state[y * w + x])) continue;  // a real basin: keep it
-            const std::vector<int> path = search.find(z, fixed, w, h, x, y, inputs.depth_margin);
-            if (path.empty()) continue;
-            ++counts.breached;
-            // A straight profile from the pit down to the lower pixel; cells already below it stay.
-            const float top = z[path.front()], bottom = z[path.back()];
-            const float k = static_cast<float>(path.size() - 1);
-            for (size_t i = 0; i < path.size(); ++i) {
-                const float line = top - (top - bottom) * (static_cast<float>(i) / k);
-                ceiling[path[i]] = std::min(ceiling[path[i]], std::min(z[path[i]], line));
+    // Each worker searches every n-th row of pits into its own ceilings; the lowest carve wins.
+    struct Worker {
+        std::vector<float> ceiling;
+        BreachCounts counts;
+    };
+    const int rows = std::max(0, y1 - y0 + 1);
+    const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::min(4, std::max(1, rows / 8)));
+    std::vector<Worker> workers(static_cast<size_t>(threads));
+    auto work = [&](int t) {
+        Worker& out = workers[static_cast<size_t>(t)];
+        out.ceiling.assign(z.size(), INFINITY);
+        PathSearch search(radius);
+        for (int y = y0 + t; y <= y1; y += threads)
+            for (int x = x0; x <= x1; ++x) {
+                if (!isPit(z, w, y * w + x)) continue;
+                ++out.counts.pits;
+                if (copiedFromClosedDepression(db, state[y * w + x])) continue;  // a real basin: keep it
+                const std::vector<int> path = search.find(z, fixed, w, h, x, y, inputs.depth_margin);
+                if (path.empty()) continue;
+                ++out.counts.breached;
+                // A straight profile from the pit down to the lower pixel; cells already below it stay.
+                const float top = z[path.front()], bottom = z[path.back()];
+                const float k = static_cast<float>(path.size() - 1);
+                for (size_t i = 0; i < path.size(); ++i) {
+                    const float line = top - (top - bottom) * (static_cast<float>(i) / k);
+                    out.ceiling[path[i]] = std::min(out.ceiling[path[i]], std::min(z[path[i]], line));
+                }
             }
-        }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    work(0);
+    for (std::thread& t : pool) t.join();
+
+    BreachCounts counts;
+    std::vector<float>& ceiling = workers[0].ceiling;
+    for (size_t t = 0; t < workers.size(); ++t) {
+        counts.pits += workers[t].counts.pits, counts.breached += workers[t].counts.breached;
+        if (t > 0)
+            for (size_t i = 0; i < ceiling.size(); ++i) ceiling[i] = std::min(ceiling[i], workers[t].ceiling[i]);
+    }
     for (size_t i = 0; i < z.size(); ++i) {
         if (ceiling[i] < z[i]) state[i].v = state[i].v - (z[i] - ceiling[i]);
         state[i].ceiling = ceiling[i];

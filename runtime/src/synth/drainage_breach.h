@@ -50,6 +50,10 @@ struct DrainageInputs {
     const PassHistory* drained = nullptr;             // previous synthesis after breaching; may be empty
     const std::vector<float>* blend = nullptr;        // constraint sums, 4 per region pixel; may be empty
     float depth_margin = 0.0f;                         // breachDepthMargin of the level, metres
+    // The pixels whose result matters (global, at the level): what the next finer level or the
+    // output reads. Only pits within `radius` of it can carve it, so the others are not searched.
+    // Empty: the whole region.
+    LevelRegion needed;
 };
 
 struct BreachCounts {
@@ -59,7 +63,10 @@ struct BreachCounts {
 
 // Breaches the region's pits (see above), lowering V along carved paths and setting every pixel's
 // ceiling. Runs on the host for both backends: the search is sparse and irregular (about one pixel
-// in a hundred is a pit), and the same code on both sides keeps them bit-identical.
+// in a hundred is a pit), and the same code on both sides keeps them bit-identical. Pits are
+// searched on up to 4 threads (hardware concurrency); paths combine by the lowest carve, so the
+// result does not depend on the thread count. Pixels outside `inputs.needed` grown by `radius`
+// may miss carves from pits beyond it.
 BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int radius, const DrainageInputs& inputs,
                         std::vector<PixelState>& state);
 
