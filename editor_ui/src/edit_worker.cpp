@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "terrasynth/incremental.h"
+#include "terrasynth/synthesizer.h"
 
 namespace terrasynth::editor {
 
@@ -329,6 +330,7 @@ void EditWorker::publishView() {
     v->layers = s.layers();
     v->warnings = s.warnings();
     v->database = s.databasePtr();
+    v->coarsest_synthesized_level = coarsestSynthesizedLevel(*v->database, s.project().synthesis);
     std::lock_guard<std::mutex> lock(mutex_);
     view_ = std::move(v);
 }

@@ -62,6 +62,7 @@ struct SessionView {
     LayerStack layers;
     std::vector<std::string> warnings;
     std::shared_ptr<const ExemplarDatabase> database;  // immutable, safe on any thread
+    int coarsest_synthesized_level = 0;                // coarser levels are block averages of it
 
     const PointItem* findPoint(EditId id) const;
     const CurveItem* findCurve(EditId id) const;

@@ -160,6 +160,12 @@ protected:
     std::shared_ptr<const ExemplarDatabase> db_;
 };
 
+// The coarsest level synthesize() runs for `params` on `db`: params.coarsest_level, or the automatic
+// one when that is -1 (kMinCoarsestSide). Output levels above it are block averages of 2^d x 2^d of
+// its pixels, so a window there costs 4^d times its pixel count: viewers that page tiles may stop
+// refining coarser than this level (the editor does). Thread-safe; db must be a built database.
+int coarsestSynthesizedLevel(const ExemplarDatabase& db, const SynthesisParams& params);
+
 // Point heights that hold (s5.1 with the finest levels free). The paper leaves the finest two levels
 // unconstrained, and their detail moves the finished site away from the asked height (measured: up
 // to 5% of the relief). This returns the constraints with every PointConstraint::lift_m set so the

@@ -210,3 +210,11 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
 }
 
 }  // namespace terrasynth::synth
+
+namespace terrasynth {
+
+int coarsestSynthesizedLevel(const ExemplarDatabase& db, const SynthesisParams& params) {
+    return synth::coarsestLevel(db, params);
+}
+
+}  // namespace terrasynth
