@@ -238,6 +238,7 @@ TEST(PluginPaging, ContinuousEditsStillReachTheScreen) {
     }
     int during = 0;
     for (int g = 0; g < kEdits; ++g) during += resolved_at[static_cast<size_t>(g)] >= 0;
+    std::printf("%d of %d edits reached the screen during the drag\n", during, kEdits);
     EXPECT_GT(during, kEdits / 4) << "edits only reached the screen after the drag stopped";
     EXPECT_GT(fx.node->stats().tiles_swapped, before.tiles_swapped);
     EXPECT_GT(fx.node->stats().tiles_invalidated, before.tiles_invalidated);
