@@ -18,15 +18,6 @@ int breachRadius(int level) {
 namespace terrasynth::synth {
 namespace {
 
-float heightAt(const DatabaseLevel& db, const PixelState& s) {
-    const float fx = std::floor(s.x), fy = std::floor(s.y);
-    const float tx = s.x - fx, ty = s.y - fy;
-    const size_t i = static_cast<size_t>(fy) * db.width + static_cast<size_t>(fx);
-    const float top = db.height_m[i] + (db.height_m[i + 1] - db.height_m[i]) * tx;
-    const float bot = db.height_m[i + db.width] + (db.height_m[i + db.width + 1] - db.height_m[i + db.width]) * tx;
-    return top + (bot - top) * ty + s.v;
-}
-
 // Frozen pixels take the recorded post-breach state; frozen and constrained pixels are never carved.
 std::vector<uint8_t> protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, std::vector<PixelState>& state) {
     std::vector<uint8_t> fixed(state.size(), 0);
@@ -161,7 +152,7 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     const int w = region.width, h = region.height;
     const std::vector<uint8_t> fixed = protectedPixels(db, inputs, state);
     std::vector<float> z(state.size());
-    for (size_t i = 0; i < z.size(); ++i) z[i] = heightAt(db, state[i]);
+    for (size_t i = 0; i < z.size(); ++i) z[i] = heightBilinear(db, state[i].x, state[i].y) + state[i].v;
     // Pits that can reach the needed pixels: within `radius` of them (interior pixels only).
     int x0 = 1, y0 = 1, x1 = w - 2, y1 = h - 2;
     if (inputs.needed.width > 0 && inputs.needed.height > 0) {

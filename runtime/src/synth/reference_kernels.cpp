@@ -40,15 +40,6 @@ Vec4 appearanceBilinearQ(const DatabaseLevel& db, float sx, float sy) {
     return {lerp(top.x, bot.x, ty), lerp(top.y, bot.y, ty), lerp(top.z, bot.z, ty), lerp(top.w, bot.w, ty)};
 }
 
-float heightBilinear(const DatabaseLevel& db, float sx, float sy) {
-    const float fx = std::floor(sx), fy = std::floor(sy);
-    const float tx = sx - fx, ty = sy - fy;
-    const size_t i = static_cast<size_t>(fy) * db.width + static_cast<size_t>(fx);
-    const float top = lerp(db.height_m[i], db.height_m[i + 1], tx);
-    const float bot = lerp(db.height_m[i + db.width], db.height_m[i + db.width + 1], tx);
-    return lerp(top, bot, ty);
-}
-
 const PixelState& stateAt(const std::vector<PixelState>& state, const LevelRegion& r, int lx, int ly) {
     lx = std::clamp(lx, 0, r.width - 1);
     ly = std::clamp(ly, 0, r.height - 1);
@@ -63,6 +54,15 @@ Vec4 neighbourAppearanceQ(const DatabaseLevel& db, const PixelState& s, float vx
 }
 
 }  // namespace
+
+float heightBilinear(const DatabaseLevel& db, float sx, float sy) {
+    const float fx = std::floor(sx), fy = std::floor(sy);
+    const float tx = sx - fx, ty = sy - fy;
+    const size_t i = static_cast<size_t>(fy) * db.width + static_cast<size_t>(fx);
+    const float top = lerp(db.height_m[i], db.height_m[i + 1], tx);
+    const float bot = lerp(db.height_m[i + db.width], db.height_m[i + db.width + 1], tx);
+    return lerp(top, bot, ty);
+}
 
 namespace {
 

@@ -44,6 +44,10 @@ struct CorrectionContext {
 void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y, int inset,
                       const CorrectionContext& context, std::vector<PixelState>& state);
 
+// E at a real-valued atlas coordinate (bilinear), in metres: the height resolve gives a pixel whose
+// state is (sx, sy) before its offset V.
+float heightBilinear(const DatabaseLevel& db, float sx, float sy);
+
 // Final heights E(S) + V (bilinear in E) of `out` (inside `region`), and optionally the sources.
 void referenceResolve(const DatabaseLevel& db, const LevelRegion& region, const std::vector<PixelState>& state,
                       const LevelRegion& out, float* heights, float* source_x, float* source_y,

@@ -171,15 +171,8 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         if (!drain) return Status::ok();
         // Issue 17: breach the level's pits; frozen pixels take the previous synthesis's drained state.
         const PassHistory drained = previousPass(params.previous.get(), level, passes, region);
-        // What the next finer level reads (the parents of its region), or the output itself.
-        LevelRegion needed = plan.output;
-        if (level > output_level) {
-            const LevelRegion& finer = plan.regions[level - 1];
-            const int x0 = floorDiv2(finer.x), y0 = floorDiv2(finer.y);
-            needed = {x0, y0, floorDiv2(finer.x + finer.width - 1) - x0 + 1, floorDiv2(finer.y + finer.height - 1) - y0 + 1};
-        }
         Status s = steps.drain(level, region, breachRadius(level),
-                               {&coherence, &drained, &constraints.blend, steps.depthMargin(level), needed});
+                               {&coherence, &drained, &constraints.blend, steps.depthMargin(level), plan.needed[level]});
         if (!s) return s;
         return history ? steps.recordPass(level, region, history->levels[level].passes.back()) : Status::ok();
     };

@@ -11,10 +11,12 @@ SynthesisPlan planSynthesis(const PixelWindow& window, int output_level, int coa
     plan.coarsest_level = coarsest_level;
     plan.passes = passes;
     plan.regions.resize(coarsest_level + 1);
+    plan.needed.resize(coarsest_level + 1);
     plan.output = {static_cast<int>(window.x), static_cast<int>(window.y), window.width, window.height};
     const int correction_margin = kSubpassReach * 4 * passes;
     LevelRegion needed = plan.output;  // what must be valid after correction at this level
     for (int level = output_level; level <= coarsest_level; ++level) {
+        plan.needed[level] = needed;
         LevelRegion& r = plan.regions[level];
         const int margin = correction_margin + (level < static_cast<int>(extra_margin.size()) ? extra_margin[level] : 0);
         r = {needed.x - margin, needed.y - margin, needed.width + 2 * margin, needed.height + 2 * margin};

@@ -26,6 +26,9 @@ struct SynthesisPlan {
     int coarsest_level = 0;
     int passes = 2;
     std::vector<LevelRegion> regions;  // indexed by level; valid for output_level..coarsest_level
+    // What each level must produce: the output at output_level, the parents of the finer level's
+    // region above it; regions[level] is this grown by the level's margin.
+    std::vector<LevelRegion> needed;
     LevelRegion output;                // the requested window at output_level
 };
 
