@@ -55,6 +55,31 @@ static void BM_PointDragStep(benchmark::State& state) {
 }
 BENCHMARK(BM_PointDragStep)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The first coarse tile read after a drag step (what the editor's first tile worker pays): a level-2
+// tile of 64^2 quads plus apron over the dragged point. The reference window is cached after the
+// first iteration, so this is the edit's block means: a full rebuild of the extent's sums per edit
+// before they were updated over the changed window.
+static void BM_CoarseTileAfterDragStep(benchmark::State& state) {
+    EditSession* s = session(state);
+    if (!s) return;
+    const EditId id = dragged(*s);
+    int step = 0;
+    s->beginGesture();
+    for (auto _ : state) {
+        state.PauseTiming();
+        auto moved = s->movePoint(id, 512 + 3.0 * (step % 8), 512 + 2.0 * ((step / 8) % 4));
+        if (!moved) state.SkipWithError(moved.message().c_str());
+        ++step;
+        const HeightSource source = s->heightSource();
+        state.ResumeTiming();
+        auto tile = source({128 - 1, 128 - 1, 67, 67}, 2);
+        if (!tile) state.SkipWithError(tile.message().c_str());
+        benchmark::DoNotOptimize(tile);
+    }
+    s->endGesture();
+}
+BENCHMARK(BM_CoarseTileAfterDragStep)->Iterations(40)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Undo of one drag step (the redo that re-applies it is not timed).
 static void BM_UndoDragStep(benchmark::State& state) {
     EditSession* s = session(state);

@@ -396,6 +396,7 @@ void EditorApp::writeStats() {
             st.tiles.unchanged += now.rebuilds_unchanged - phase_start_stats_.rebuilds_unchanged;
         }
         st.mean_tile_build_ms = now.mean_build_ms;
+        st.mean_tile_heights_ms = now.mean_heights_ms;
     }
     st.autosave_ms = autosave_ms_;
     st.renderer = renderer_;

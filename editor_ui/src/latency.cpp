@@ -124,7 +124,7 @@ std::string statsJson(const EditorStats& st) {
     j["tiles"] = {{"edits", st.tiles.edits},         {"touching_changed_window", st.tiles.touching},
                   {"in_view", st.tiles.in_view},     {"rebuilt", st.tiles.built},
                   {"swapped", st.tiles.swapped},     {"rebuilt_unchanged", st.tiles.unchanged},
-                  {"mean_build_ms", st.mean_tile_build_ms}};
+                  {"mean_build_ms", st.mean_tile_build_ms}, {"mean_heights_ms", st.mean_tile_heights_ms}};
     j["autosave_ms"] = summaryJson(st.autosave_ms);
     return j.dump(2) + "\n";
 }

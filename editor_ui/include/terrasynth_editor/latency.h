@@ -97,6 +97,7 @@ struct EditorStats {
     TileAccounting tiles;
     std::vector<double> autosave_ms;
     double mean_tile_build_ms = 0.0;
+    double mean_tile_heights_ms = 0.0;  // of mean_tile_build_ms: reading the height source
     std::string renderer;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
 };
 std::string statsJson(const EditorStats& stats);

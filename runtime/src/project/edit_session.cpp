@@ -131,7 +131,9 @@ PixelWindow EditSession::Impl::publish() {
     const PixelWindow changed = same_world ? differingWindow(extent, previous->edit->heights(), *now) : extent;
     auto next = std::make_shared<SessionSnapshot>();
     next->world = world;
-    next->edit = std::make_shared<const project::ExtentEdit>(extent, std::move(now), reference0);
+    next->edit = same_world ? std::make_shared<const project::ExtentEdit>(extent, std::move(now), reference0,
+                                                                          *previous->edit, changed)
+                            : std::make_shared<const project::ExtentEdit>(extent, std::move(now), reference0);
     std::atomic_store(&snapshot, std::shared_ptr<const SessionSnapshot>(std::move(next)));
     return changed;
 }

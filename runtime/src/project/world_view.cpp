@@ -18,29 +18,80 @@ ExtentEdit::ExtentEdit(PixelWindow extent, std::shared_ptr<const std::vector<flo
     TERRASYNTH_REQUIRE(reference_ && reference_->size() == n, "reference heights must cover the extent");
 }
 
+ExtentEdit::ExtentEdit(PixelWindow extent, std::shared_ptr<const std::vector<float>> heights,
+                       std::shared_ptr<const std::vector<float>> reference, const ExtentEdit& previous,
+                       PixelWindow changed)
+    : ExtentEdit(extent, std::move(heights), std::move(reference)) {
+    if (previous.extent_ == extent_ && previous.reference_ == reference_ && previous.sums_ready_.load(std::memory_order_acquire))
+        std::call_once(sums_once_, [&] { updateSums(previous, changed); });
+}
+
+namespace {
+
+// Level 0 keeps no sums (its values are edited - reference, read from the planes), so a moment's
+// copy of the previous sums is a third of the extent's size in doubles instead of 1.3x.
+struct Level0 {
+    const float* heights;
+    const float* reference;
+};
+
+// The block (bx, by) of `coarse` as the sum of its 2x2 children in `fine` (those touching the
+// extent), added in row-major order from 0: the same doubles whichever blocks are recomputed.
+void sumChildren(const ExtentEdit::Level& fine, const Level0* planes, ExtentEdit::Level& coarse, int64_t bx, int64_t by) {
+    double sum = 0.0;
+    for (int64_t fy = 2 * by; fy <= 2 * by + 1; ++fy) {
+        if (fy < fine.y || fy >= fine.y + fine.height) continue;
+        for (int64_t fx = 2 * bx; fx <= 2 * bx + 1; ++fx) {
+            if (fx < fine.x || fx >= fine.x + fine.width) continue;
+            const size_t i = static_cast<size_t>(fy - fine.y) * fine.width + static_cast<size_t>(fx - fine.x);
+            sum += planes ? static_cast<double>(planes->heights[i]) - static_cast<double>(planes->reference[i]) : fine.sums[i];
+        }
+    }
+    coarse.sums[static_cast<size_t>(by - coarse.y) * coarse.width + static_cast<size_t>(bx - coarse.x)] = sum;
+}
+
+// Level `level` blocks covering the level-0 window `w`, clipped to the level's blocks.
+void sumBlocks(const ExtentEdit::Level& fine, const Level0* planes, ExtentEdit::Level& coarse, int level,
+               const PixelWindow& w) {
+    const int64_t bx0 = std::max(coarse.x, floorShift(w.x, level)), by0 = std::max(coarse.y, floorShift(w.y, level));
+    const int64_t bx1 = std::min(coarse.x + coarse.width - 1, floorShift(w.x + w.width - 1, level));
+    const int64_t by1 = std::min(coarse.y + coarse.height - 1, floorShift(w.y + w.height - 1, level));
+    for (int64_t by = by0; by <= by1; ++by)
+        for (int64_t bx = bx0; bx <= bx1; ++bx) sumChildren(fine, planes, coarse, bx, by);
+}
+
+constexpr int kSumLevels = 13;
+
+}  // namespace
+
 // Sums of the edit per block, level by level from the 2x2 children (samples of each level that
 // touch the extent), in double so the means do not depend on block size.
 void ExtentEdit::buildSums() const {
-    const int kLevels = 13;
-    levels_.resize(kLevels);
+    levels_.resize(kSumLevels);
     Level& base = levels_[0];
     base.x = extent_.x, base.y = extent_.y, base.width = extent_.width, base.height = extent_.height;
-    base.sums.resize(heights_->size());
-    for (size_t i = 0; i < base.sums.size(); ++i)
-        base.sums[i] = static_cast<double>((*heights_)[i]) - static_cast<double>((*reference_)[i]);
-    for (int level = 1; level < kLevels; ++level) {
+    const Level0 planes{heights_->data(), reference_->data()};
+    for (int level = 1; level < kSumLevels; ++level) {
         const Level& fine = levels_[level - 1];
         Level& l = levels_[level];
         l.x = floorShift(fine.x, 1), l.y = floorShift(fine.y, 1);
         l.width = static_cast<int>(floorShift(fine.x + fine.width - 1, 1) - l.x + 1);
         l.height = static_cast<int>(floorShift(fine.y + fine.height - 1, 1) - l.y + 1);
         l.sums.assign(static_cast<size_t>(l.width) * l.height, 0.0);
-        for (int y = 0; y < fine.height; ++y)
-            for (int x = 0; x < fine.width; ++x) {
-                const int64_t cx = floorShift(fine.x + x, 1) - l.x, cy = floorShift(fine.y + y, 1) - l.y;
-                l.sums[static_cast<size_t>(cy) * l.width + cx] += fine.sums[static_cast<size_t>(y) * fine.width + x];
-            }
+        sumBlocks(fine, level == 1 ? &planes : nullptr, l, level, extent_);
     }
+    sums_ready_.store(true, std::memory_order_release);
+}
+
+// The previous moment's sums with the blocks over `changed` recomputed (same geometry: same extent).
+void ExtentEdit::updateSums(const ExtentEdit& previous, const PixelWindow& changed) const {
+    levels_ = previous.levels_;
+    const PixelWindow both = intersectWindows(changed, extent_);
+    const Level0 planes{heights_->data(), reference_->data()};
+    if (both.width > 0 && both.height > 0)
+        for (int level = 1; level < kSumLevels; ++level)
+            sumBlocks(levels_[level - 1], level == 1 ? &planes : nullptr, levels_[level], level, both);
+    sums_ready_.store(true, std::memory_order_release);
 }
 
 void ExtentEdit::applyTo(Heightfield& h, const PixelWindow& window, int level) const {

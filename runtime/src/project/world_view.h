@@ -9,6 +9,7 @@
 // edit ask for windows the cache already holds).
 #pragma once
 
+#include <atomic>
 #include <list>
 #include <map>
 #include <memory>
@@ -27,6 +28,13 @@ public:
     // `heights` and `reference`: level-0 heights over `extent`, row-major.
     ExtentEdit(PixelWindow extent, std::shared_ptr<const std::vector<float>> heights,
                std::shared_ptr<const std::vector<float>> reference);
+    // The next moment of `previous` (same extent and reference), whose heights differ from it only
+    // inside `changed` (global level-0 pixels). If `previous` already built its block sums, this one's
+    // are its copy updated over `changed`, here on the calling thread (bit-identical to a full build,
+    // which a tile worker would otherwise pay on its first coarse request: 25-75 ms for a 1024^2
+    // extent on the 2-core machine while the editor drags, against about 2 ms for a point's window).
+    ExtentEdit(PixelWindow extent, std::shared_ptr<const std::vector<float>> heights,
+               std::shared_ptr<const std::vector<float>> reference, const ExtentEdit& previous, PixelWindow changed);
     const PixelWindow& extent() const { return extent_; }
     const std::vector<float>& heights() const { return *heights_; }
     const std::shared_ptr<const std::vector<float>>& heightsPtr() const { return heights_; }
@@ -39,16 +47,20 @@ public:
         return (*heights_)[static_cast<size_t>(y - extent_.y) * extent_.width + static_cast<size_t>(x - extent_.x)];
     }
 
-private:
+    // Block sums of one level (public for world_view.cpp's helpers).
     struct Level {
         int64_t x = 0, y = 0;  // first sample (global, this level) touching the extent
         int width = 0, height = 0;
-        std::vector<double> sums;  // sum of the edit over the block's extent pixels
+        std::vector<double> sums;  // sum of the edit over the block's extent pixels (empty at level 0)
     };
+
+private:
     void buildSums() const;
+    void updateSums(const ExtentEdit& previous, const PixelWindow& changed) const;
     PixelWindow extent_;
     std::shared_ptr<const std::vector<float>> heights_, reference_;
     mutable std::once_flag sums_once_;
+    mutable std::atomic<bool> sums_ready_{false};  // levels_ complete (read by a later moment's update)
     mutable std::vector<Level> levels_;  // index = level; built on the first coarse request
 };
 
