@@ -118,8 +118,9 @@ TEST(ExemplarRealism, EveryExemplarAloneDrawsFromAllOfIt) {
 }
 
 TEST(ExemplarRealism, BreachingLeavesFewerClosedDepressions) {
-    // Issue 17: with drainage (the default) the synthesis holds fewer closed depressions than the same
-    // synthesis without it, and its drainage area stays within the exemplar's own spread.
+    // Issue 17: with drainage (Drainage::Breach, off by default) the synthesis holds fewer closed
+    // depressions than the same synthesis without it, and its drainage area stays within the
+    // exemplar's own spread.
     // Per exemplar the reduction ranges from 7% (orom_rockies) to 86% (wn_mackay) at this size, so
     // each must not get worse and together they must lose at least a quarter of their distance.
     double total_on = 0.0, total_off = 0.0;
