@@ -36,21 +36,22 @@ EditId dragged(EditSession& s) {
     return 0;
 }
 
+// Drag step `step` of a gesture: the point moves a few pixels (what one mouse event between frames
+// does), cycling over a small pattern around the extent's centre.
+void dragStep(benchmark::State& state, EditSession& s, EditId id, int step) {
+    auto r = s.movePoint(id, 512 + 3.0 * (step % 8), 512 + 2.0 * ((step / 8) % 4));
+    if (!r) state.SkipWithError(r.message().c_str());
+}
+
 }  // namespace
 
-// A drag step: the point moves a few pixels (what one mouse event between frames does).
 static void BM_PointDragStep(benchmark::State& state) {
     EditSession* s = session(state);
     if (!s) return;
     const EditId id = dragged(*s);
     int step = 0;
     s->beginGesture();
-    for (auto _ : state) {
-        const double dx = 3.0 * (step % 8), dy = 2.0 * ((step / 8) % 4);
-        auto r = s->movePoint(id, 512 + dx, 512 + dy);
-        if (!r) state.SkipWithError(r.message().c_str());
-        ++step;
-    }
+    for (auto _ : state) dragStep(state, *s, id, step++);
     s->endGesture();
 }
 BENCHMARK(BM_PointDragStep)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -67,9 +68,7 @@ static void BM_CoarseTileAfterDragStep(benchmark::State& state) {
     s->beginGesture();
     for (auto _ : state) {
         state.PauseTiming();
-        auto moved = s->movePoint(id, 512 + 3.0 * (step % 8), 512 + 2.0 * ((step / 8) % 4));
-        if (!moved) state.SkipWithError(moved.message().c_str());
-        ++step;
+        dragStep(state, *s, id, step++);
         const HeightSource source = s->heightSource();
         state.ResumeTiming();
         auto tile = source({128 - 1, 128 - 1, 67, 67}, 2);
