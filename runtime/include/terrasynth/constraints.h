@@ -74,7 +74,10 @@ struct CurveConstraint {
 // Paper defaults of eq. 8: tolerance slope s and outer slope lambda of phi_d.
 constexpr float kPointToleranceSlope = 0.5f;
 constexpr float kPointBlendSlope = 0.5f;
-// The area of effect at level i is min(radius, 4 * 2^i * kLocalisation) level-0 pixels (s5.1).
+// s5.1: the area of effect at level i is min(reach, kPointLocalisation * 2^i) level-0 pixels. Curves
+// keep it; points act over their whole radius on every constrained level (the tolerance of phi_d
+// grows with the distance, so that only pulls terrain that strays far from the asked plane), which
+// holds their slope direction over the radius (docs/realism.md).
 constexpr float kPointLocalisation = 4.0f;
 // Geometric and type constraints act on levels >= this (s5.1, s5.2: off on the finest two).
 constexpr int kFirstConstrainedLevel = 2;

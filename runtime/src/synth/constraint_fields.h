@@ -28,19 +28,17 @@ struct LevelConstraints {
 // Below `first_level` (SynthesisParams::first_constrained_level) nothing, or with `hold_free_levels`
 // (SynthesisParams::hold_on_free_levels) the constraints' own pixels only: the points' 7x7 sites,
 // and the curves within the usual localisation but held softly (accumulateCurve, curve_raster.h).
-// At `coarsest_level` (the coarsest synthesized) a point acts over its whole radius: the levels above
-// it, where its localisation 4 * 2^level would have reached that far, are no longer synthesized
-// (issue 16), and without them the slope asked for over the radius was never pulled into place.
+// From `first_level` up, a point acts over its whole radius (accumulatePoint) and a curve over its
+// reach localised to min(reach, kPointLocalisation * 2^level).
 LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
-                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0,
-                                     int coarsest_level);
+                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0);
 
 // Half the width of a point's own 7x7 pixels (level-0 pixels from the site): held on the free levels
 // so the slope seen over them holds.
 constexpr double kSiteHalfWidthPx = 3.5;
 
-// Adds (sign +1) or removes (-1) one point constraint's terms to/from 4-float blend sums of `region`.
-// `localisation_px` > 0 replaces the per-level localisation kPointLocalisation * 2^level.
+// Adds (sign +1) or removes (-1) one point constraint's terms to/from 4-float blend sums of `region`,
+// over its whole radius, or with `localisation_px` > 0 over min(radius, localisation_px).
 void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
                      float sign, std::vector<float>& blend, double localisation_px = 0.0);
 

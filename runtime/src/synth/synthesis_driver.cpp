@@ -144,7 +144,7 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         const LevelRegion& region = plan.regions[level];
         const LevelConstraints constraints =
             constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, params.hold_on_free_levels,
-                                region, db.meters_per_pixel, coarsest);
+                                region, db.meters_per_pixel);
         const std::vector<uint8_t> coherence =
             params.previous ? coherenceCodes(params.coherence.get(), level, region) : std::vector<uint8_t>();
         Status begun = steps.beginLevel(level, region, constraints, coherence, params.seed);
