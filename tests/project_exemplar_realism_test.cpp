@@ -136,27 +136,38 @@ TEST(ExemplarRealism, BreachingLeavesFewerClosedDepressions) {
 }
 
 TEST(ExemplarRealism, ExemplarsShareTheOutputInProportionToTheirSize) {
-    // Issue 16: without type painting, no exemplar takes over or vanishes (before: orom_appalachians,
-    // the smoothest, took 82% and orom_himalaya-everest 0.4%). The issue's goal, a factor 2 of the
-    // database share, holds for seeds 1 and 2 but not 3 (ratios 0.36-1.78: the coarsest level holds
-    // only a dozen initial patches at 1024^2, docs/realism.md), so a factor 4 is asserted.
+    // Issue 16: without type painting, each exemplar's share of the output within a factor 2 of its
+    // share of the database (before: orom_appalachians, the smoothest, took 82% and
+    // orom_himalaya-everest 0.4%; later, with independent draws for the initial patches, 5 of
+    // seeds 1-10 had an exemplar outside a factor 2). With the patches' exemplars drawn by systematic
+    // sampling (kInitialStrata), a 1024^2 synthesis still holds only about nine patches, so one
+    // exemplar of one seed in ten may fall just outside (seed 10: orom_rockies 9.8%, docs/realism.md):
+    // asserted are a factor 3 for all and a factor 2 for nine seeds of ten.
     auto db = test::defaultDatabase();
     ASSERT_TRUE(db);
     auto synthesizer = Synthesizer::create(db);
     ASSERT_TRUE(synthesizer) << synthesizer.message();
     std::vector<Heightfield> exemplars;
     for (int e = 0; e < static_cast<int>(db->exemplars.size()); ++e) exemplars.push_back(exemplarField(*db, e));
-    SynthesisParams params;
-    params.seed = kSeed;
-    auto out = synthesizer.value()->synthesize({0, 0, 1024, 1024}, params, 0, true);
-    ASSERT_TRUE(out) << out.message();
-    auto usage = measureSourceUsage(exemplars, out->source_x, out->source_y, out->source_exemplar);
-    ASSERT_TRUE(usage) << usage.message();
-    for (size_t e = 0; e < usage->size(); ++e) {
-        const ExemplarUsage& u = (*usage)[e];
-        std::printf("%-24s output %5.1f%% database %5.1f%% flattest30 %5.1f%%\n", db->exemplars[e].name.c_str(),
-                    100 * u.output_share, 100 * u.exemplar_share, 100 * u.flattest_share);
-        EXPECT_GE(u.output_share, u.exemplar_share / 4) << db->exemplars[e].name;
-        EXPECT_LE(u.output_share, u.exemplar_share * 4) << db->exemplars[e].name;
+    int seeds_within_2 = 0;
+    for (uint32_t seed = 1; seed <= 10; ++seed) {
+        SynthesisParams params;
+        params.seed = seed;
+        auto out = synthesizer.value()->synthesize({0, 0, 1024, 1024}, params, 0, true);
+        ASSERT_TRUE(out) << out.message();
+        auto usage = measureSourceUsage(exemplars, out->source_x, out->source_y, out->source_exemplar);
+        ASSERT_TRUE(usage) << usage.message();
+        bool within_2 = true;
+        std::printf("seed %2u:", seed);
+        for (size_t e = 0; e < usage->size(); ++e) {
+            const ExemplarUsage& u = (*usage)[e];
+            std::printf(" %s %.1f%% (database %.1f%%)", db->exemplars[e].name.c_str(), 100 * u.output_share, 100 * u.exemplar_share);
+            EXPECT_GE(u.output_share, u.exemplar_share / 3) << db->exemplars[e].name << " seed " << seed;
+            EXPECT_LE(u.output_share, u.exemplar_share * 3) << db->exemplars[e].name << " seed " << seed;
+            within_2 = within_2 && u.output_share >= u.exemplar_share / 2 && u.output_share <= u.exemplar_share * 2;
+        }
+        std::printf("%s\n", within_2 ? "" : " (outside a factor 2)");
+        seeds_within_2 += within_2;
     }
+    EXPECT_GE(seeds_within_2, 9);
 }

@@ -66,7 +66,7 @@ public:
                                     std::to_string(kPointToleranceSlope) + "f -DBLEND_SLOPE=" +
                                     std::to_string(kPointBlendSlope) + "f -DCOHERENT_WEIGHT=" +
                                     std::to_string(kCoherentWeight) + "f -DINIT_PATCH_SIZE=" +
-                                    std::to_string(kInitialPatchSize);
+                                    std::to_string(kInitialPatchSize) + " -DSTRATA=" + std::to_string(kInitialStrata);
         auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, defines);
         if (!program) return program.status();
         program_ = std::move(program.value());

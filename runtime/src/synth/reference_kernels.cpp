@@ -68,14 +68,26 @@ namespace {
 
 int floorDiv(int v, int d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
 
-int mirrorInto(int v, int n) {
-    const int period = 2 * n;
-    int m = v % period;
-    if (m < 0) m += period;
-    return m < n ? m : period - 1 - m;
+int wrapInto(int v, int n) {
+    const int m = v % n;
+    return m < 0 ? m + n : m;
 }
 
 }  // namespace
+
+uint32_t stratifiedPick(int cell_x, int cell_y, uint32_t salt, uint32_t total) {
+    const int strata = kInitialStrata;
+    const int bx = floorDiv(cell_x, strata), by = floorDiv(cell_y, strata);
+    const int k = (cell_x - strata * bx) + strata * (cell_y - strata * by);
+    const uint32_t key = hash3(cell_x, cell_y, salt ^ 0x2u);
+    int rank = 0;
+    for (int j = 0; j < strata * strata; ++j) {
+        const uint32_t other = hash3(strata * bx + j % strata, strata * by + j / strata, salt ^ 0x2u);
+        rank += other < key || (other == key && j < k);
+    }
+    const uint64_t position = (static_cast<uint64_t>(rank) << 24) | (hash3(bx, by, salt ^ 0x5u) >> 8);
+    return static_cast<uint32_t>(position * total / (static_cast<uint64_t>(strata * strata) << 24));
+}
 
 void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t seed, int level,
                    std::vector<PixelState>& state) {
@@ -99,7 +111,7 @@ void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t 
                         site_x = sx, site_y = sy, cell_x = cx + i, cell_y = cy + j;
                     }
                 }
-            const uint32_t pick = hash3(cell_x, cell_y, salt ^ 0x2u) % cumulative.back();
+            const uint32_t pick = stratifiedPick(cell_x, cell_y, salt, cumulative.back());
             size_t e = 0;
             while (e + 1 < cumulative.size() && pick >= cumulative[e]) ++e;
             const AtlasRect& r = db.rects[e];
@@ -107,8 +119,8 @@ void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t 
             const int ox = static_cast<int>(hash3(cell_x, cell_y, salt ^ 0x3u) % static_cast<uint32_t>(iw));
             const int oy = static_cast<int>(hash3(cell_x, cell_y, salt ^ 0x4u) % static_cast<uint32_t>(ih));
             PixelState& s = state[static_cast<size_t>(ly) * region.width + lx];
-            s.x = static_cast<float>(r.x + kInteriorMargin + mirrorInto(ox + gx - site_x, iw));
-            s.y = static_cast<float>(r.y + kInteriorMargin + mirrorInto(oy + gy - site_y, ih));
+            s.x = static_cast<float>(r.x + kInteriorMargin + wrapInto(ox + gx - site_x, iw));
+            s.y = static_cast<float>(r.y + kInteriorMargin + wrapInto(oy + gy - site_y, ih));
             s.v = 0.0f;
             s.ceiling = INFINITY;  // no drainage ceiling
         }

@@ -19,6 +19,11 @@ struct PixelState {
     float x = 0, y = 0, v = 0, ceiling = 0;
 };
 
+// The point of [0, total) that picks the exemplar of initial cell (cell_x, cell_y), the kernel's
+// stratified_pick: the kInitialStrata^2 cells of a block take one stratum of [0, total) each, in a
+// random order, at one random offset per block. `total` > 0.
+uint32_t stratifiedPick(int cell_x, int cell_y, uint32_t salt, uint32_t total);
+
 // Coarsest level: irregular patches of exemplar coordinates (synth/initial_patches.h), V = 0.
 void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t seed, int level,
                    std::vector<PixelState>& state);
