@@ -197,6 +197,36 @@ TEST(PluginPaging, EditsSwapOnlyTilesWhoseHeightsChange) {
     EXPECT_LT(rebuilt, fx.node->stats().resident_tiles / 2);
 }
 
+// An edit's tiles on screen start rebuilding when the edit invalidates them, not after the next
+// cull has wanted them and the UPDATE after it has planned them (one to two frames, 40-80 ms in the
+// editor on llvmpipe): with no frame in between, their rebuilds finish, and the next frame swaps
+// them all in.
+TEST(PluginPaging, EditedTilesOnScreenRebuildWithoutWaitingForAFrame) {
+    TerrainNodeOptions o = smallTiles();
+    Fixture fx(o, "orom_rockies");
+    const osg::Vec3d eye(15000, -15000, 5000), center(22000, -22000, 1500);
+    ASSERT_GE(fx.settle(eye, center), 0);
+    const PixelWindow edit{240, 240, 16, 16};
+    fx.node->setHeightSource(editedSource(fx.source, [edit](const PixelWindow& w, int level, Heightfield& h) {
+        const int64_t s = int64_t{1} << level;
+        for (int y = 0; y < h.height; ++y)
+            for (int x = 0; x < h.width; ++x) {
+                const int64_t gx = (w.x + x) * s, gy = (w.y + y) * s;
+                if (gx < edit.x + edit.width && gx + s > edit.x && gy < edit.y + edit.height && gy + s > edit.y) h.at(x, y) += 50.0f;
+            }
+    }));
+    const uint64_t generation = fx.node->invalidate(edit, 0);
+    const size_t awaiting = fx.node->tilesAwaitingRebuild(generation);
+    ASSERT_GT(awaiting, 0u) << "the edit should touch tiles on screen";
+    ASSERT_LE(awaiting, static_cast<size_t>(o.max_merges_per_frame));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (fx.node->stats().waiting_merge < awaiting && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    EXPECT_GE(fx.node->stats().waiting_merge, awaiting) << "rebuilds waited for a frame to be planned";
+    fx.view->frame(eye, center);
+    EXPECT_EQ(fx.node->tilesAwaitingRebuild(generation), 0u);
+}
+
 }  // namespace
 }  // namespace terrasynth::plugin
 

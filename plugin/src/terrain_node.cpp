@@ -216,6 +216,10 @@ void TerrainNode::invalidateLocked(const Invalidation& inv) {
             it = tiles_.erase(it);
         }
     }
+    // Start the rebuilds of the edited tiles on screen now rather than after the next cull has
+    // wanted them and the UPDATE after it has planned them: that waited one to two frames (40-80 ms
+    // while the editor drags on llvmpipe). The next UPDATE re-plans as usual.
+    if (wantDrawnDirtyTiles()) planBuilds();
 }
 
 void TerrainNode::setHeightSource(HeightSource source) {

@@ -46,6 +46,17 @@ void TerrainNode::want(const TileKey& key, double priority) {
     if (!inserted) it->second = std::min(it->second, priority);
 }
 
+bool TerrainNode::wantDrawnDirtyTiles() {
+    bool any = false;
+    for (const TileKey& key : drawn_keys_) {
+        auto it = tiles_.find(key);
+        if (it == tiles_.end() || !it->second.dirty) continue;
+        want(key, kDirtyPriority + it->second.drawn_distance);
+        any = true;
+    }
+    return any;
+}
+
 void TerrainNode::cull(osgUtil::CullVisitor& cv) {
     std::lock_guard<std::mutex> lock(mutex_);
     const unsigned frame = cv.getFrameStamp() ? cv.getFrameStamp()->getFrameNumber() : frame_counter_;
@@ -144,6 +155,7 @@ void TerrainNode::selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile&
             return;
         }
     }
+    tile.drawn_distance = d;
     if (tile.dirty) want(key, kDirtyPriority + d);
     tile.node->accept(cv);
     drawn_.push_back(tile.node);

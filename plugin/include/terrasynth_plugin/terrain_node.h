@@ -183,6 +183,7 @@ private:
         size_t bytes = 0;
         size_t triangles = 0;
         unsigned last_used_frame = 0;
+        double drawn_distance = 0.0;  // from the camera when the last cull drew it (m)
         bool dirty = false;
     };
     struct Invalidation {
@@ -200,6 +201,9 @@ private:
     void cullFrom(osgUtil::CullVisitor& cv, unsigned frame);  // roots around the eye, then selectTile
     void selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile& tile);
     void want(const TileKey& key, double priority);
+    // Wants the tiles the last cull drew that an edit has just marked dirty, as that cull would
+    // have; true when there were any.
+    bool wantDrawnDirtyTiles();
     double screenPixelsPerMeter(osgUtil::CullVisitor& cv, double distance) const;
     // UPDATE
     void update(unsigned frame);
