@@ -41,6 +41,7 @@ for phase, f in j["frames"].items():
 t = j["tiles"]
 print(f"tiles: {t['edits']} edits, rebuilt {t['rebuilt']} (swapped {t['swapped']}, unchanged {t['rebuilt_unchanged']})"
       f" of {t['touching_changed_window']} marked as touching the changed windows; {t['in_view']} drawn summed over edits;"
-      f" mean build {t['mean_build_ms']:.1f} ms")
+      f" mean build {t['mean_build_ms']:.1f} ms since start-up, {t['edit_mean_build_ms']:.1f} ms while editing"
+      f" (heights {t['edit_mean_heights_ms']:.1f} ms)")
 print("autosave:", j["autosave_ms"])
 PY

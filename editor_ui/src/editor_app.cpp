@@ -365,16 +365,23 @@ bool EditorApp::settled() const {
            terrain_->settled() && !latency_.pending() && gestures_open_ == 0 && !previews_pending_;
 }
 
+void EditorApp::addPhaseTiles(const plugin::TerrainStats& now, TileAccounting& tiles) const {
+    const plugin::TerrainStats& start = phase_start_stats_;
+    tiles.built += now.tiles_built - start.tiles_built;
+    tiles.swapped += now.tiles_swapped - start.tiles_swapped;
+    tiles.unchanged += now.rebuilds_unchanged - start.rebuilds_unchanged;
+    // The node keeps means since start-up; their sums' difference is this phase's.
+    const double built_now = static_cast<double>(now.tiles_built), built_start = static_cast<double>(start.tiles_built);
+    tiles.build_ms += now.mean_build_ms * built_now - start.mean_build_ms * built_start;
+    tiles.heights_ms += now.mean_heights_ms * built_now - start.mean_heights_ms * built_start;
+}
+
 void EditorApp::setPhase(const std::string& name) {
     // Tile work is attributed to edits in every phase but "setup" (where the script moves the camera
     // and the view fills in); the script settles before it leaves setup.
     if (terrain_) {
         const plugin::TerrainStats now = terrain_->stats();
-        if (phase_ != "setup") {
-            tiles_.built += now.tiles_built - phase_start_stats_.tiles_built;
-            tiles_.swapped += now.tiles_swapped - phase_start_stats_.tiles_swapped;
-            tiles_.unchanged += now.rebuilds_unchanged - phase_start_stats_.rebuilds_unchanged;
-        }
+        if (phase_ != "setup") addPhaseTiles(now, tiles_);
         phase_start_stats_ = now;
     }
     phase_ = name;
@@ -390,11 +397,7 @@ void EditorApp::writeStats() {
     st.tiles = tiles_;
     if (terrain_) {
         const plugin::TerrainStats now = terrain_->stats();
-        if (phase_ != "setup") {
-            st.tiles.built += now.tiles_built - phase_start_stats_.tiles_built;
-            st.tiles.swapped += now.tiles_swapped - phase_start_stats_.tiles_swapped;
-            st.tiles.unchanged += now.rebuilds_unchanged - phase_start_stats_.rebuilds_unchanged;
-        }
+        if (phase_ != "setup") addPhaseTiles(now, st.tiles);
         st.mean_tile_build_ms = now.mean_build_ms;
         st.mean_tile_heights_ms = now.mean_heights_ms;
     }

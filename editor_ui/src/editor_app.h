@@ -84,6 +84,8 @@ private:
     void save(const std::string& path);
     void setStatus(const std::string& text, bool error);
     bool settled() const;
+    // Adds the tile work since the phase started (TerrainStats deltas) to `tiles`.
+    void addPhaseTiles(const plugin::TerrainStats& now, TileAccounting& tiles) const;
     void setPhase(const std::string& name);
 
     // ---- tools (tools.cpp)

@@ -124,7 +124,9 @@ std::string statsJson(const EditorStats& st) {
     j["tiles"] = {{"edits", st.tiles.edits},         {"touching_changed_window", st.tiles.touching},
                   {"in_view", st.tiles.in_view},     {"rebuilt", st.tiles.built},
                   {"swapped", st.tiles.swapped},     {"rebuilt_unchanged", st.tiles.unchanged},
-                  {"mean_build_ms", st.mean_tile_build_ms}, {"mean_heights_ms", st.mean_tile_heights_ms}};
+                  {"mean_build_ms", st.mean_tile_build_ms}, {"mean_heights_ms", st.mean_tile_heights_ms},
+                  {"edit_mean_build_ms", st.tiles.built ? st.tiles.build_ms / st.tiles.built : 0.0},
+                  {"edit_mean_heights_ms", st.tiles.built ? st.tiles.heights_ms / st.tiles.built : 0.0}};
     j["autosave_ms"] = summaryJson(st.autosave_ms);
     return j.dump(2) + "\n";
 }

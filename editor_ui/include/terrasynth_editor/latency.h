@@ -86,6 +86,7 @@ struct TileAccounting {
     uint64_t touching = 0;   // sum over edits of the resident tiles in view touching the window
     uint64_t in_view = 0;    // sum over edits of the resident tiles in view
     uint64_t built = 0, swapped = 0, unchanged = 0;  // TerrainStats deltas over the measured phases
+    double build_ms = 0.0, heights_ms = 0.0;         // summed over those builds (of which reading heights)
 };
 
 // Everything --stats writes, as JSON text (docs/editor.md).
