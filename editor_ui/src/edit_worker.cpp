@@ -194,9 +194,13 @@ uint64_t EditWorker::editCount() const {
 }
 
 void EditWorker::threadMain() {
-    // Below the frame loop, above the tile workers (WorkerPool::kWorkerNice): on a small machine the
-    // main thread must not wait for the CPU while the session synthesizes. Threads created from here
-    // (the OpenCL runtime's, when the session opens) inherit it; Linux nice is per thread.
+    // At the frame loop's level, above the tile workers (WorkerPool::kWorkerNice). Threads created
+    // from here (the OpenCL runtime's, when the session opens) inherit it; Linux nice is per thread.
+    // Below the frame loop (nice 5, before), a software rasterizer (llvmpipe) took the cores from
+    // the synthesis: on the 2-core machine the point drag's p95 latency was 326-343 ms against
+    // 159-194 ms at the same level, for frames a third slower while dragging (median 46-48 against
+    // 31-36 ms); the main thread's own work stays small either way (docs/editor.md). With a GPU the
+    // draw leaves the cores to the edit.
     setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kEditThreadNice);
     auto progress = [this](const std::string& stage, double p) {
         std::lock_guard<std::mutex> lock(mutex_);

@@ -119,8 +119,8 @@ using SessionOpener = std::function<Result<std::unique_ptr<EditSession>>(
 class EditWorker {
 public:
     enum class State { Opening, Ready, Failed };
-    // CPU niceness of the edit thread (see threadMain).
-    static constexpr int kEditThreadNice = 5;
+    // CPU niceness of the edit thread and the OpenCL threads it starts (see threadMain).
+    static constexpr int kEditThreadNice = 0;
 
     // Starts the edit thread, which first runs `opener`.
     explicit EditWorker(SessionOpener opener);
