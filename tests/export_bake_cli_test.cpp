@@ -56,7 +56,9 @@ void expectSameFiles(const std::string& a, const std::string& b) {
 }
 
 int runScript(const std::string& command, std::string* output) {
-    const std::string log = test::scratchDir("bake_script_log") + "/out.txt";
+    // One folder per process: ctest runs the BakeCli tests in parallel, and a shared one was wiped
+    // or overwritten by another test mid-run (a check read the other test's validator output).
+    const std::string log = test::scratchDir("bake_script_log_" + std::to_string(getpid())) + "/out.txt";
     const int status = std::system((command + " > '" + log + "' 2>&1").c_str());
     *output = test::readFile(log);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
