@@ -240,6 +240,52 @@ TEST(EditSession, FortyRandomEditsUndoRedoSaveReopen) {
 
 // s5.2 through the session: a stroke repainted with another type must change the terrain under it,
 // since its pixels now draw from other exemplars (the previous result may not win by coherence).
+TEST(EditSession, ADragWithDeferredLiftsKeepsThemAndLiftsOnceAtTheEnd) {
+    // The editor's drags: intermediate moves keep the point's lift (no search), liftDeferred lifts it
+    // once, and the site then holds its height as a lifted point does (within 2% of the relief,
+    // issue 18); the whole drag, final lift included, is one undo step.
+    const std::string dir = test::scratchDir("session_deferred_lifts");
+    auto session = openSession(writeProject(dir, 9));
+    ASSERT_TRUE(session);
+    auto heightAt = [&](const PointConstraint& p) {
+        return session->heights().at(static_cast<int>(p.x - kOriginX), static_cast<int>(p.y - kOriginY));
+    };
+    PointConstraint p;
+    p.x = kOriginX + 70.0, p.y = kOriginY + 80.0;
+    p.height_m = heightAt(p) + 300.0f;
+    p.slope_angle_deg = 0.0f;
+    p.radius_px = 40.0f;
+    EditId id = 0;
+    ASSERT_TRUE(session->addPoint(p, &id));
+    const HeightRange relief = heightRange(session->heights());
+    const float tolerance = 0.02f * (relief.max - relief.min);
+    EXPECT_LT(std::fabs(heightAt(*session->point(id)) - p.height_m), tolerance);
+    const std::vector<float> before = session->heights().heights;
+    const float lift_before = session->point(id)->lift_m;
+
+    session->beginGesture();
+    session->deferLifts(true);
+    for (int k = 1; k <= 8; ++k) {
+        ASSERT_TRUE(session->movePoint(id, p.x + 4.0 * k, p.y + 3.0 * k));
+        EXPECT_EQ(session->point(id)->lift_m, lift_before) << "step " << k << " searched its lift";
+    }
+    auto lifted = session->liftDeferred();
+    ASSERT_TRUE(lifted) << lifted.message();
+    EXPECT_GT(lifted->width, 0);
+    session->endGesture();
+    const PointConstraint& moved = *session->point(id);
+    std::printf("site after the drag: %.2f m from its height (relief %.0f m), lift %.1f -> %.1f m\n",
+                std::fabs(heightAt(moved) - moved.height_m), relief.max - relief.min, lift_before, moved.lift_m);
+    EXPECT_LT(std::fabs(heightAt(moved) - moved.height_m), tolerance);
+    // Nothing left deferred: a second call is no edit.
+    auto again = session->liftDeferred();
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again->width, 0);
+
+    ASSERT_TRUE(session->undo());
+    EXPECT_EQ(session->heights().heights, before) << "the drag and its final lift were not one undo step";
+}
+
 TEST(EditSession, RepaintingAStrokeWithAnotherTypeChangesIt) {
     const std::string dir = test::scratchDir("session_repaint");
     auto session = openSession(writeProject(dir, 5));

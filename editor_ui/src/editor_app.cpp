@@ -265,6 +265,7 @@ void EditorApp::beginGesture() {
     r.label = "gesture";
     r.run = [](EditSession& s) -> Result<PixelWindow> {
         s.beginGesture();
+        s.deferLifts(true);  // the drag's steps keep their lifts; endGesture lifts once
         return PixelWindow{};
     };
     submit(std::move(r));
@@ -274,8 +275,9 @@ void EditorApp::endGesture() {
     EditRequest r;
     r.label = "gesture";
     r.run = [](EditSession& s) -> Result<PixelWindow> {
+        Result<PixelWindow> lifted = s.liftDeferred();
         s.endGesture();
-        return PixelWindow{};
+        return lifted;
     };
     r.done = [this](const EditResult&) { gestures_open_ = std::max(0, gestures_open_ - 1); };
     submit(std::move(r));

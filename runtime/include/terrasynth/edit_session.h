@@ -150,6 +150,15 @@ public:
     // The three variants a hole-fill layer offers (LayerEditor::holeFillPreviews); not an edit.
     Result<std::vector<Heightfield>> holeFillPreviews(int index, int generation);
 
+    // ---- Drags (edit thread) ----
+    // While deferred, edits keep the points' and curves' lifts instead of searching them
+    // (IncrementalTerrain::deferLifts), so a drag's intermediate steps cost about a quarter less and
+    // their sites may miss their heights by what the move changed. liftDeferred() is the edit that
+    // lifts everything they re-synthesized (empty window when nothing was deferred): call it when
+    // the drag ends, before endGesture() so it is part of the drag's undo step.
+    void deferLifts(bool defer);
+    Result<PixelWindow> liftDeferred();
+
     // ---- Undo (edit thread) ----
     // Everything between the two calls is one undo step (nesting counts; an empty gesture adds none).
     void beginGesture();

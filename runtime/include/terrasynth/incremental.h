@@ -133,6 +133,14 @@ public:
     // Whether update() lifts point and curve constraints (default true); false = the paper's plain
     // targets.
     void holdPointHeights(bool hold) { hold_point_heights_ = hold; }
+    // While deferred (and holdPointHeights), edits skip the lift searches and keep the constraints'
+    // current lifts, and what they re-synthesize is remembered: the intermediate steps of a drag,
+    // where the search was about a quarter of each step. liftDeferred() then lifts the points and
+    // curves in that area and re-synthesizes it (`changed`, optional, receives its box; width 0 when
+    // nothing was deferred), after which the heights hold as if nothing had been deferred.
+    void deferLifts(bool defer) { lifts_deferred_ = defer; }
+    bool liftsPending() const { return deferred_area_.width > 0; }
+    Status liftDeferred(PixelWindow* changed = nullptr);
 
     // Pixels re-synthesized by the last update (output window only), for benchmarks.
     PixelWindow lastWindow() const { return last_window_; }
@@ -147,6 +155,10 @@ private:
     PixelWindow last_window_;
     std::vector<uint8_t> frozen_;  // per extent pixel, 1 = frozen (pasted)
     bool hold_point_heights_ = true;
+    bool lifts_deferred_ = false;
+    PixelWindow deferred_area_{0, 0, 0, 0};  // union of the free areas edited while deferred
+    bool liftsNow() const { return hold_point_heights_ && !lifts_deferred_; }
+    void noteDeferred(const PixelWindow& free_area);
     std::unique_ptr<detail::TileJournal> journal_;  // recording when set
     // Journal planes: 0 heights, 1 frozen, then 2 + 2 * (level * passes + pass) + {0 index, 1 v}.
     void record(int plane, int64_t x, int64_t y, int64_t w, int64_t h);

@@ -324,6 +324,15 @@ const PasteConstraint* EditSession::paste(EditId id) const { return byId(impl_->
 
 // ---- Undo ----
 
+void EditSession::deferLifts(bool defer) { impl_->terrain->deferLifts(defer); }
+
+Result<PixelWindow> EditSession::liftDeferred() {
+    Impl& s = *impl_;
+    s.terrain->deferLifts(false);
+    if (!s.terrain->liftsPending()) return PixelWindow{};
+    return s.edit(true, false, [&] { return s.terrain->liftDeferred(); });
+}
+
 void EditSession::beginGesture() { ++impl_->gesture_depth; }
 
 void EditSession::endGesture() {
