@@ -45,16 +45,25 @@ void dragStep(benchmark::State& state, EditSession& s, EditId id, int step) {
 
 }  // namespace
 
-static void BM_PointDragStep(benchmark::State& state) {
+// Drag steps of one gesture; with `defer` as the editor drags (EditSession::deferLifts): a step
+// keeps the point's lift instead of searching it, and the final lift is one edit when the drag ends
+// (not timed).
+static void dragGesture(benchmark::State& state, bool defer) {
     EditSession* s = session(state);
     if (!s) return;
     const EditId id = dragged(*s);
     int step = 0;
     s->beginGesture();
+    s->deferLifts(defer);
     for (auto _ : state) dragStep(state, *s, id, step++);
+    if (auto lifted = s->liftDeferred(); !lifted) state.SkipWithError(lifted.message().c_str());
     s->endGesture();
 }
+
+static void BM_PointDragStep(benchmark::State& state) { dragGesture(state, false); }
 BENCHMARK(BM_PointDragStep)->Unit(benchmark::kMillisecond)->UseRealTime();
+static void BM_PointDragStepDeferredLifts(benchmark::State& state) { dragGesture(state, true); }
+BENCHMARK(BM_PointDragStepDeferredLifts)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The first coarse tile read after a drag step (what the editor's first tile worker pays): a level-2
 // tile of 64^2 quads plus apron over the dragged point. The reference window is cached after the
