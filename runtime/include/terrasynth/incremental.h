@@ -139,7 +139,7 @@ public:
     // curves in that area and re-synthesizes it (`changed`, optional, receives its box; width 0 when
     // nothing was deferred), after which the heights hold as if nothing had been deferred.
     void deferLifts(bool defer) { lifts_deferred_ = defer; }
-    bool liftsPending() const { return deferred_area_.width > 0; }
+    bool liftsPending() const { return !deferred_area_.empty(); }
     Status liftDeferred(PixelWindow* changed = nullptr);
 
     // Pixels re-synthesized by the last update (output window only), for benchmarks.

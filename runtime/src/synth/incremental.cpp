@@ -211,22 +211,14 @@ Status IncrementalTerrain::update(std::shared_ptr<const SynthesisConstraints> co
 }
 
 void IncrementalTerrain::noteDeferred(const PixelWindow& free_area) {
-    if (!hold_point_heights_ || !lifts_deferred_ || free_area.width <= 0 || free_area.height <= 0) return;
-    if (deferred_area_.width == 0) {
-        deferred_area_ = free_area;
-        return;
-    }
-    const int64_t x0 = std::min(deferred_area_.x, free_area.x), y0 = std::min(deferred_area_.y, free_area.y);
-    const int64_t x1 = std::max(deferred_area_.x + deferred_area_.width, free_area.x + free_area.width);
-    const int64_t y1 = std::max(deferred_area_.y + deferred_area_.height, free_area.y + free_area.height);
-    deferred_area_ = {x0, y0, static_cast<int>(x1 - x0), static_cast<int>(y1 - y0)};
+    if (hold_point_heights_ && lifts_deferred_) deferred_area_ = uniteWindows(deferred_area_, free_area);
 }
 
 Status IncrementalTerrain::liftDeferred(PixelWindow* changed) {
     const PixelWindow area = deferred_area_;
     deferred_area_ = {0, 0, 0, 0};
     if (changed) *changed = area;
-    if (area.width == 0 || !hold_point_heights_) return Status::ok();
+    if (area.empty() || !hold_point_heights_) return Status::ok();
     // The whole union is re-synthesized Free: the constraints inside it are lifted against the
     // terrain it will have, not against the drag's intermediate one.
     return resynthesize(area, nullptr, params_.constraints, true);
