@@ -42,6 +42,17 @@ struct Fixture {
 };
 
 
+// An edit for editedSource: the level-0 block `edit` raised by `raise` metres (a level-k sample is
+// raised when its level-0 block overlaps the edit, as a box filter would spread it).
+void raiseBlock(const PixelWindow& edit, float raise, const PixelWindow& w, int level, Heightfield& h) {
+    const int64_t s = int64_t{1} << level;
+    for (int y = 0; y < h.height; ++y)
+        for (int x = 0; x < h.width; ++x) {
+            const int64_t gx = (w.x + x) * s, gy = (w.y + y) * s;
+            if (gx < edit.x + edit.width && gx + s > edit.x && gy < edit.y + edit.height && gy + s > edit.y) h.at(x, y) += raise;
+        }
+}
+
 bool isAncestor(TileKey a, const TileKey& b) {  // a strictly coarser and containing b
     if (a.level <= b.level) return false;
     TileKey c = b;
@@ -149,17 +160,10 @@ TEST(PluginPaging, EditsSwapOnlyTilesWhoseHeightsChange) {
     std::vector<osg::ref_ptr<osg::Node>> before;
     for (const auto& k : drawn) before.push_back(fx.node->tileNode(k));
 
-    // Raise a 40x40-pixel block of level-0 ground by 80 m (a level-k sample is raised when its
-    // level-0 block overlaps the edit, as a box filter would spread it).
+    // Raise a 40x40-pixel block of level-0 ground by 80 m.
     const PixelWindow edit{230, 230, 40, 40};
     fx.node->setHeightSource(editedSource(fx.source, [edit](const PixelWindow& w, int level, Heightfield& f) {
-        const int64_t s = int64_t{1} << level;
-        for (int y = 0; y < f.height; ++y)
-            for (int x = 0; x < f.width; ++x) {
-                const int64_t gx = (w.x + x) * s, gy = (w.y + y) * s;
-                if (gx < edit.x + edit.width && gx + s > edit.x && gy < edit.y + edit.height && gy + s > edit.y)
-                    f.at(x, y) += 80.0f;
-            }
+        raiseBlock(edit, 80.0f, w, level, f);
     }));
     // Invalidate everything: the manager itself must find which tiles really changed.
     fx.node->invalidateAll();
@@ -209,12 +213,7 @@ TEST(PluginPaging, EditedTilesOnScreenRebuildWithoutWaitingForAFrame) {
     ASSERT_GE(fx.settle(eye, center), 0);
     const PixelWindow edit{240, 240, 16, 16};
     fx.node->setHeightSource(editedSource(fx.source, [edit](const PixelWindow& w, int level, Heightfield& h) {
-        const int64_t s = int64_t{1} << level;
-        for (int y = 0; y < h.height; ++y)
-            for (int x = 0; x < h.width; ++x) {
-                const int64_t gx = (w.x + x) * s, gy = (w.y + y) * s;
-                if (gx < edit.x + edit.width && gx + s > edit.x && gy < edit.y + edit.height && gy + s > edit.y) h.at(x, y) += 50.0f;
-            }
+        raiseBlock(edit, 50.0f, w, level, h);
     }));
     const uint64_t generation = fx.node->invalidate(edit, 0);
     const size_t awaiting = fx.node->tilesAwaitingRebuild(generation);
@@ -252,12 +251,7 @@ TEST(PluginPaging, ContinuousEditsStillReachTheScreen) {
     for (int f = 0; f < kEdits; ++f) {
         const float raise = 10.0f * static_cast<float>(f + 1);
         fx.node->setHeightSource(editedSource(fx.source, [edit, raise](const PixelWindow& w, int level, Heightfield& h) {
-            const int64_t s = int64_t{1} << level;
-            for (int y = 0; y < h.height; ++y)
-                for (int x = 0; x < h.width; ++x) {
-                    const int64_t gx = (w.x + x) * s, gy = (w.y + y) * s;
-                    if (gx < edit.x + edit.width && gx + s > edit.x && gy < edit.y + edit.height && gy + s > edit.y) h.at(x, y) += raise;
-                }
+            raiseBlock(edit, raise, w, level, h);
             std::this_thread::sleep_for(std::chrono::milliseconds(3));  // a slow source
         }));
         generations.push_back(fx.node->invalidate(edit, 0));
