@@ -22,10 +22,13 @@ std::shared_ptr<const std::vector<float>> randomPlane(size_t n, uint32_t seed) {
     return plane;
 }
 
+// v / 2^level rounded down, written here rather than taken from the code under test.
+int64_t floorDown(int64_t v, int level) { return v >= 0 ? v >> level : -((-v + (int64_t(1) << level) - 1) >> level); }
+
 // What applyTo adds at `level` over a window one sample wider than the extent's blocks on each side.
 std::vector<float> coarseEdit(const ExtentEdit& edit, int level) {
     const PixelWindow& e = edit.extent();
-    auto down = [level](int64_t v) { return v >= 0 ? v >> level : -((-v + (int64_t(1) << level) - 1) >> level); };
+    auto down = [level](int64_t v) { return floorDown(v, level); };
     const int64_t x0 = down(e.x) - 1, y0 = down(e.y) - 1;
     const int w = static_cast<int>(down(e.x + e.width - 1) + 2 - x0), h = static_cast<int>(down(e.y + e.height - 1) + 2 - y0);
     Heightfield field(w, h, 1.0);
@@ -49,7 +52,7 @@ double blockSum(const PixelWindow& e, const std::vector<float>& h, const std::ve
 }
 
 std::vector<float> oracleEdit(const PixelWindow& e, const std::vector<float>& h, const std::vector<float>& r, int level) {
-    auto down = [level](int64_t v) { return v >= 0 ? v >> level : -((-v + (int64_t(1) << level) - 1) >> level); };
+    auto down = [level](int64_t v) { return floorDown(v, level); };
     const int64_t x0 = down(e.x) - 1, y0 = down(e.y) - 1;
     const int w = static_cast<int>(down(e.x + e.width - 1) + 2 - x0), hh = static_cast<int>(down(e.y + e.height - 1) + 2 - y0);
     std::vector<float> out(static_cast<size_t>(w) * hh, 0.0f);

@@ -238,8 +238,6 @@ TEST(EditSession, FortyRandomEditsUndoRedoSaveReopen) {
     EXPECT_TRUE(sameBits(extentOf(**lost).heights, extentOf(**afresh).heights));
 }
 
-// s5.2 through the session: a stroke repainted with another type must change the terrain under it,
-// since its pixels now draw from other exemplars (the previous result may not win by coherence).
 TEST(EditSession, ADragWithDeferredLiftsKeepsThemAndLiftsOnceAtTheEnd) {
     // The editor's drags: intermediate moves keep the point's lift (no search), liftDeferred lifts it
     // once, and the site then holds its height as a lifted point does (within 2% of the relief,
@@ -286,6 +284,8 @@ TEST(EditSession, ADragWithDeferredLiftsKeepsThemAndLiftsOnceAtTheEnd) {
     EXPECT_EQ(session->heights().heights, before) << "the drag and its final lift were not one undo step";
 }
 
+// s5.2 through the session: a stroke repainted with another type must change the terrain under it,
+// since its pixels now draw from other exemplars (the previous result may not win by coherence).
 TEST(EditSession, RepaintingAStrokeWithAnotherTypeChangesIt) {
     const std::string dir = test::scratchDir("session_repaint");
     auto session = openSession(writeProject(dir, 5));
