@@ -48,12 +48,13 @@ void dragStep(benchmark::State& state, EditSession& s, EditId id, int step) {
 // Drag steps of one gesture; with `defer` as the editor drags (EditSession::deferLifts): a step
 // keeps the point's lift instead of searching it, and the final lift is one edit when the drag ends
 // (not timed).
-static void dragGesture(benchmark::State& state, bool defer) {
+static void dragGesture(benchmark::State& state, bool defer, int preview_levels = 0) {
     EditSession* s = session(state);
     if (!s) return;
     const EditId id = dragged(*s);
     int step = 0;
     s->beginGesture();
+    s->setDragPreviewLevels(preview_levels);
     s->deferLifts(defer);
     for (auto _ : state) dragStep(state, *s, id, step++);
     if (auto lifted = s->liftDeferred(); !lifted) state.SkipWithError(lifted.message().c_str());
@@ -64,6 +65,29 @@ static void BM_PointDragStep(benchmark::State& state) { dragGesture(state, false
 BENCHMARK(BM_PointDragStep)->Unit(benchmark::kMillisecond)->UseRealTime();
 static void BM_PointDragStepDeferredLifts(benchmark::State& state) { dragGesture(state, true); }
 BENCHMARK(BM_PointDragStepDeferredLifts)->Unit(benchmark::kMillisecond)->UseRealTime();
+// ... and with the editor's preview: the finest level upsampled, not corrected, until the drag ends.
+static void BM_PointDragStepPreview(benchmark::State& state) { dragGesture(state, true, 1); }
+BENCHMARK(BM_PointDragStepPreview)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The end of a previewed drag: the lift and full re-synthesis of what its steps changed (the editor's
+// gesture end; the drag is 8 steps, not timed).
+static void BM_PreviewedDragFinish(benchmark::State& state) {
+    EditSession* s = session(state);
+    if (!s) return;
+    const EditId id = dragged(*s);
+    int step = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        s->beginGesture();
+        s->setDragPreviewLevels(1);
+        s->deferLifts(true);
+        for (int i = 0; i < 8; ++i) dragStep(state, *s, id, step++);
+        state.ResumeTiming();
+        if (auto lifted = s->liftDeferred(); !lifted) state.SkipWithError(lifted.message().c_str());
+        s->endGesture();
+    }
+}
+BENCHMARK(BM_PreviewedDragFinish)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The first coarse tile read after a drag step (what the editor's first tile worker pays): a level-2
 // tile of 64^2 quads plus apron over the dragged point. The reference window is cached after the

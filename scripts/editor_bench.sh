@@ -3,10 +3,11 @@
 # llvmpipe, no GPU) on the default 1024^2 project, driven by editor_ui/scripts/latency.script (a point
 # drag, a band slider drag, a curve widget drag, idle frames). Writes out/editor_bench/stats.json
 # (medians, p95, frame split into main-thread work and the GL draw, tiles rebuilt) and prints a summary.
-# Usage: scripts/editor_bench.sh [build dir]
+# Usage: scripts/editor_bench.sh [build dir] [editor options...], e.g. --drag-preview-levels 0
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
+shift $(( $# > 0 ? 1 : 0 ))
 out=out/editor_bench
 mkdir -p "$out"
 export POCL_CACHE_DIR=${POCL_CACHE_DIR:-$PWD/$build/pocl_cache}
@@ -24,7 +25,7 @@ rm -f "$out"/bench.autosave.*
 display=()
 if [ -z "${DISPLAY:-}" ]; then display=(xvfb-run -a -s "-screen 0 1280x720x24"); fi
 "${display[@]}" "$build/bin/terrasynth_editor" "$out/bench.tsyn" --size 1280x720 \
-  --script editor_ui/scripts/latency.script --stats "$out/stats.json" > "$out/editor.log"
+  --script editor_ui/scripts/latency.script --stats "$out/stats.json" "$@" > "$out/editor.log"
 /usr/bin/python3 - "$out/stats.json" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))

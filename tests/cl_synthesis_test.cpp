@@ -211,3 +211,60 @@ TEST(SynthesisDifferential, OpenClMatchesReferenceWithConstraints) {
     ASSERT_TRUE(plain);
     EXPECT_NE(plain->heights.heights, cl->heights.heights);
 }
+
+TEST(Synthesis, APreviewLevelKeepsWhatIsNotFreeAndUpsamplesTheFreeArea) {
+    // SynthesisParams::preview_levels (an editor's drag step): against a previous synthesis of the
+    // same window, the finest level keeps every pixel that is not Free bit for bit and leaves the
+    // Free ones upsampled and jittered, uncorrected; both backends agree within the correction
+    // differential's tolerance, and the history holds that state for every pass.
+    const PixelWindow w{100, -50, 192, 160};
+    const PixelWindow free_area{148, -10, 96, 80};
+    SynthesisParams p;
+    p.seed = 21;
+    p.record_history = true;
+    auto full = openCl().synthesize(w, p, 0, false);
+    ASSERT_TRUE(full) << full.message();
+    auto map = std::make_shared<CoherenceMap>();
+    map->x = w.x, map->y = w.y, map->width = w.width, map->height = w.height;
+    map->weights.assign(static_cast<size_t>(w.width) * w.height, Coherence::Coherent);
+    auto inside = [&](int x, int y) {
+        return w.x + x >= free_area.x && w.x + x < free_area.x + free_area.width && w.y + y >= free_area.y &&
+               w.y + y < free_area.y + free_area.height;
+    };
+    for (int y = 0; y < w.height; ++y)
+        for (int x = 0; x < w.width; ++x)
+            if (inside(x, y)) map->weights[static_cast<size_t>(y) * w.width + x] = Coherence::Free;
+    SynthesisParams preview = p;
+    preview.previous = full->history;
+    preview.coherence = map;
+    preview.preview_levels = 1;
+    auto cl = openCl().synthesize(w, preview, 0, false);
+    auto ref = reference().synthesize(w, preview, 0, false);
+    ASSERT_TRUE(cl) << cl.message();
+    ASSERT_TRUE(ref) << ref.message();
+    size_t kept_changed = 0, free_pixels = 0, free_changed = 0, off = 0;
+    for (int y = 0; y < w.height; ++y)
+        for (int x = 0; x < w.width; ++x) {
+            const float before = full->heights.at(x, y), now = cl->heights.at(x, y);
+            if (inside(x, y)) {
+                ++free_pixels;
+                free_changed += now != before;
+            } else {
+                kept_changed += std::memcmp(&now, &before, sizeof(float)) != 0;
+            }
+            off += std::fabs(now - ref->heights.at(x, y)) > 1e-3f;
+        }
+    std::printf("preview: %zu of %zu free pixels changed, %zu kept pixels changed; backends differ > 1 mm at %zu\n",
+                free_changed, free_pixels, kept_changed, off);
+    EXPECT_EQ(kept_changed, 0u);
+    EXPECT_GT(free_changed, free_pixels * 9 / 10) << "the free area was not re-synthesized";
+    EXPECT_LE(off, cl->heights.size() / 1000);
+    const auto& level0 = cl->history->levels[0];
+    ASSERT_EQ(level0.passes.size(), full->history->levels[0].passes.size());
+    for (const auto& pass : level0.passes) EXPECT_EQ(pass.index, level0.passes[0].index);
+    // Without a preview the same request corrects the free area: a different terrain there.
+    preview.preview_levels = 0;
+    auto corrected = openCl().synthesize(w, preview, 0, false);
+    ASSERT_TRUE(corrected);
+    EXPECT_NE(corrected->heights.heights, cl->heights.heights);
+}

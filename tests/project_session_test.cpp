@@ -284,6 +284,96 @@ TEST(EditSession, ADragWithDeferredLiftsKeepsThemAndLiftsOnceAtTheEnd) {
     EXPECT_EQ(session->heights().heights, before) << "the drag and its final lift were not one undo step";
 }
 
+namespace {
+
+// Mean |h - mean of its 3x3| over the pixels within `r` of (cx, cy) (extent pixels): the level-0
+// detail the finest correction passes give.
+double fineDetail(const Heightfield& h, double cx, double cy, double r) {
+    double sum = 0.0;
+    int count = 0;
+    for (int y = 1; y < h.height - 1; ++y)
+        for (int x = 1; x < h.width - 1; ++x) {
+            if ((x - cx) * (x - cx) + (y - cy) * (y - cy) > r * r) continue;
+            double mean = 0.0;
+            for (int j = -1; j <= 1; ++j)
+                for (int i = -1; i <= 1; ++i) mean += h.at(x + i, y + j);
+            sum += std::fabs(h.at(x, y) - mean / 9.0);
+            ++count;
+        }
+    return count ? sum / count : 0.0;
+}
+
+}  // namespace
+
+TEST(EditSession, APreviewedDragChangesOnlyItsDiscsAndFinishesAsAFullSynthesis) {
+    // The editor's drags (--drag-preview-levels 1): every step synthesizes the finest level as a
+    // preview (upsampled, not corrected) and changes nothing beyond the discs of the point's old and
+    // new site; the gesture's end synthesizes in full, so the site holds its height (2% of the
+    // relief, as after any drag) and the finished detail is that of a drag without the preview
+    // (level-0 detail within 15%; the preview's own within 50%); the drag stays one undo step.
+    const std::string dir = test::scratchDir("session_previewed_drag");
+    const std::string path = writeProject(dir, 9);
+    auto previewed = openSession(path), full = openSession(path);
+    ASSERT_TRUE(previewed && full);
+    PointConstraint p;
+    p.x = kOriginX + 70.0, p.y = kOriginY + 80.0;
+    p.height_m = previewed->heights().at(70, 80) + 300.0f;
+    p.slope_angle_deg = 0.0f;
+    p.radius_px = 40.0f;
+    EditId id = 0, full_id = 0;
+    ASSERT_TRUE(previewed->addPoint(p, &id));
+    ASSERT_TRUE(full->addPoint(p, &full_id));
+    const std::vector<float> before = previewed->heights().heights;
+    const HeightRange relief = heightRange(previewed->heights());
+
+    for (EditSession* s : {previewed.get(), full.get()}) {
+        s->beginGesture();
+        s->setDragPreviewLevels(s == previewed.get() ? 1 : 0);
+        s->deferLifts(true);
+    }
+    double x = p.x, y = p.y;
+    for (int k = 1; k <= 8; ++k) {
+        const std::vector<float> step_before = previewed->heights().heights;
+        const double nx = p.x + 4.0 * k, ny = p.y + 3.0 * k;
+        ASSERT_TRUE(previewed->movePoint(id, nx, ny));
+        ASSERT_TRUE(full->movePoint(full_id, nx, ny));
+        size_t outside_changed = 0, inside = 0, inside_changed = 0;
+        for (int py = 0; py < kSize; ++py)
+            for (int px = 0; px < kSize; ++px) {
+                const double gx = kOriginX + px, gy = kOriginY + py, r2 = p.radius_px * p.radius_px;
+                const bool in_disc = (gx - x) * (gx - x) + (gy - y) * (gy - y) <= r2 || (gx - nx) * (gx - nx) + (gy - ny) * (gy - ny) <= r2;
+                const size_t i = static_cast<size_t>(py) * kSize + px;
+                const bool changed = std::memcmp(&previewed->heights().heights[i], &step_before[i], sizeof(float)) != 0;
+                if (in_disc) ++inside, inside_changed += changed;
+                else outside_changed += changed;
+            }
+        EXPECT_EQ(outside_changed, 0u) << "step " << k << " changed pixels beyond the discs";
+        EXPECT_GT(inside_changed, inside / 2) << "step " << k;
+        x = nx, y = ny;
+    }
+    const double cx = x - kOriginX, cy = y - kOriginY;
+    const double preview_detail = fineDetail(previewed->heights(), cx, cy, p.radius_px);
+    for (EditSession* s : {previewed.get(), full.get()}) {
+        auto finished = s->liftDeferred();
+        ASSERT_TRUE(finished) << finished.message();
+        EXPECT_GT(finished->width, 0);
+        s->endGesture();
+    }
+    const PointConstraint& moved = *previewed->point(id);
+    const float miss = std::fabs(previewed->heights().at(static_cast<int>(cx), static_cast<int>(cy)) - moved.height_m);
+    const double finished_detail = fineDetail(previewed->heights(), cx, cy, p.radius_px);
+    const double full_detail = fineDetail(full->heights(), cx, cy, p.radius_px);
+    std::printf("site %.2f m from its height (relief %.0f m); level-0 detail: preview %.3f m, finished %.3f m, "
+                "drag without preview %.3f m\n",
+                miss, relief.max - relief.min, preview_detail, finished_detail, full_detail);
+    EXPECT_LT(miss, 0.02f * (relief.max - relief.min));
+    EXPECT_NEAR(finished_detail, full_detail, 0.15 * full_detail);
+    // The preview shows the exemplars' detail, not upsampling noise (2x2 steps measured 2.5-4x).
+    EXPECT_LT(preview_detail, 1.5 * full_detail);
+    ASSERT_TRUE(previewed->undo());
+    EXPECT_EQ(previewed->heights().heights, before) << "the previewed drag and its finish were not one undo step";
+}
+
 // s5.2 through the session: a stroke repainted with another type must change the terrain under it,
 // since its pixels now draw from other exemplars (the previous result may not win by coherence).
 TEST(EditSession, RepaintingAStrokeWithAnotherTypeChangesIt) {

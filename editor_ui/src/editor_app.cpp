@@ -263,17 +263,24 @@ void EditorApp::beginGesture() {
     ++gestures_open_;
     EditRequest r;
     r.label = "gesture";
-    r.run = [](EditSession& s) -> Result<PixelWindow> {
+    r.run = [levels = options_.drag_preview_levels](EditSession& s) -> Result<PixelWindow> {
         s.beginGesture();
-        s.deferLifts(true);  // the drag's steps keep their lifts; endGesture lifts once
+        // The drag's steps keep their lifts and preview their finest levels; endGesture lifts and
+        // synthesizes in full once.
+        s.setDragPreviewLevels(levels);
+        s.deferLifts(true);
         return PixelWindow{};
     };
     submit(std::move(r));
 }
 
-void EditorApp::endGesture() {
+void EditorApp::endGesture(bool timed_release) {
     EditRequest r;
     r.label = "gesture";
+    if (timed_release) {
+        r.input_seq = latency_.noteInput(InputKind::DragRelease, frame_input_s_);
+        r.input_kind = static_cast<int>(InputKind::DragRelease);
+    }
     r.run = [](EditSession& s) -> Result<PixelWindow> {
         Result<PixelWindow> lifted = s.liftDeferred();
         s.endGesture();

@@ -78,7 +78,8 @@ private:
                         std::function<void(const EditResult&)> done = {});
     void stepHistory(bool forward);
     void beginGesture();
-    void endGesture();
+    // timed_release: the release of a point or widget drag, timed as InputKind::DragRelease.
+    void endGesture(bool timed_release = false);
     void undo();
     void redo();
     void save(const std::string& path);

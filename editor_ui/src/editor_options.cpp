@@ -52,6 +52,9 @@ Result<EditorOptions> parseEditorOptions(int argc, const char* const* argv, std:
     app.add_option("--backend", backend, "Synthesis backend: opencl or reference");
     app.add_option("--clear-color", colour, "Background colour R,G,B in [0, 1]");
     app.add_option("--ui-scale", o.ui_scale, "Panel scale")->check(CLI::Range(0.5, 4.0));
+    app.add_option("--drag-preview-levels", o.drag_preview_levels,
+                   "Finest levels a drag shows uncorrected until release (0 = full quality every step; default 1)")
+        ->check(CLI::Range(0, 2));
     app.add_option("--terrain-options", o.terrain_options,
                    "Terrain settings in the plugin's syntax, e.g. \"tileSize=128 pixelError=6\"");
     try {

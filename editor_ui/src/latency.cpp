@@ -13,6 +13,7 @@ const char* inputKindName(InputKind kind) {
         case InputKind::PointDrag: return "point_drag";
         case InputKind::BandSlider: return "band_slider";
         case InputKind::WidgetDrag: return "widget_drag";
+        case InputKind::DragRelease: return "drag_release";
     }
     return "unknown";
 }

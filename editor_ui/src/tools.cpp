@@ -262,7 +262,7 @@ void EditorApp::toolRelease(double x, double y) {
         default:
             break;
     }
-    if (drag_.gesture) endGesture();
+    if (drag_.gesture) endGesture(drag_.kind == Drag::Kind::MovePoint || drag_.kind == Drag::Kind::MoveWidget);
     ghost_offset_px_.reset();
     drag_ = Drag{};
 }

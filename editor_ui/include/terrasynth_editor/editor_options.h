@@ -29,6 +29,9 @@ struct EditorOptions {
     std::string terrain_options;
     // Autosaves are at least this far apart, and wait for this long without input.
     double autosave_interval_s = 1.0;
+    // A drag's intermediate steps synthesize their finest levels as a preview (upsampled, not
+    // corrected: EditSession::setDragPreviewLevels); the release re-synthesizes in full. 0..2.
+    int drag_preview_levels = 1;
 };
 
 constexpr int kExitOk = 0, kExitFailed = 1, kExitBadInput = 2;

@@ -25,9 +25,11 @@ namespace terrasynth::editor {
 
 struct EditResult;
 
-enum class InputKind : int { PointDrag = 0, BandSlider = 1, WidgetDrag = 2 };
-constexpr int kInputKinds = 3;
-const char* inputKindName(InputKind kind);  // "point_drag", "band_slider", "widget_drag"
+// DragRelease: the release of a point or widget drag, answered by the gesture's end (the deferred
+// lifts and the full synthesis after a preview).
+enum class InputKind : int { PointDrag = 0, BandSlider = 1, WidgetDrag = 2, DragRelease = 3 };
+constexpr int kInputKinds = 4;
+const char* inputKindName(InputKind kind);  // "point_drag", "band_slider", "widget_drag", "drag_release"
 
 struct LatencySample {
     double applied_ms = 0.0, swapped_ms = 0.0, shown_ms = 0.0;  // from the input

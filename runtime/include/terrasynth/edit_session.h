@@ -158,6 +158,11 @@ public:
     // the drag ends, before endGesture() so it is part of the drag's undo step.
     void deferLifts(bool defer);
     Result<PixelWindow> liftDeferred();
+    // While deferred, the steps also synthesize their finest `levels` levels as a preview
+    // (IncrementalTerrain::setPreviewLevels: upsampled from the level above, not corrected, so a
+    // point drag step costs about half) and liftDeferred() re-synthesizes their area in full, so
+    // the finished gesture is a full synthesis. 0 (default) = every step is a full synthesis; 0..2.
+    void setDragPreviewLevels(int levels);
 
     // ---- Undo (edit thread) ----
     // Everything between the two calls is one undo step (nesting counts; an empty gesture adds none).

@@ -141,6 +141,12 @@ public:
     void deferLifts(bool defer) { lifts_deferred_ = defer; }
     bool liftsPending() const { return !deferred_area_.empty(); }
     Status liftDeferred(PixelWindow* changed = nullptr);
+    // While deferred, edits also synthesize their finest `levels` levels as a preview
+    // (SynthesisParams::preview_levels: upsampled, not corrected, constraints not applied there),
+    // and liftDeferred() re-synthesizes everything they changed in full, whether or not points are
+    // held. Between the two, heights() is the preview. 0 (default) = deferred edits are full
+    // syntheses; 0..2 (1 is what an editor's drag wants: docs/editor.md).
+    void setPreviewLevels(int levels);
 
     // Pixels re-synthesized by the last update (output window only), for benchmarks.
     PixelWindow lastWindow() const { return last_window_; }
@@ -157,14 +163,16 @@ private:
     bool hold_point_heights_ = true;
     bool lifts_deferred_ = false;
     PixelWindow deferred_area_{0, 0, 0, 0};  // union of the free areas edited while deferred
+    int preview_levels_ = 0;
     bool liftsNow() const { return hold_point_heights_ && !lifts_deferred_; }
+    int previewNow() const { return lifts_deferred_ ? preview_levels_ : 0; }
     void noteDeferred(const PixelWindow& free_area);
     std::unique_ptr<detail::TileJournal> journal_;  // recording when set
     // Journal planes: 0 heights, 1 frozen, then 2 + 2 * (level * passes + pass) + {0 index, 1 v}.
     void record(int plane, int64_t x, int64_t y, int64_t w, int64_t h);
     void recordHistory(int level, int64_t gx, int64_t gy, int64_t w, int64_t h);  // every pass, global coords
     Status resynthesize(const PixelWindow& free_area, const std::vector<uint8_t>* free_mask,
-                        std::shared_ptr<const SynthesisConstraints> constraints, bool lift_points);
+                        std::shared_ptr<const SynthesisConstraints> constraints, bool lift_points, int preview_levels = 0);
 };
 
 }  // namespace terrasynth

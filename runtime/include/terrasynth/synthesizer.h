@@ -111,6 +111,14 @@ struct SynthesisParams {
     std::shared_ptr<const SynthesisHistory> previous;
     std::shared_ptr<const CoherenceMap> coherence;
     bool record_history = false;  // fill SynthesisOutput::history
+    // Drag preview (an editor's intermediate steps, IncrementalTerrain::setPreviewLevels): the finest
+    // `preview_levels` levels of the output are upsampled and jittered (eq. 1-2), snapped to whole
+    // exemplar pixels, but not corrected, so they cost a read-back instead of their passes (the
+    // finest level is about three quarters of a synthesis). Pixels that are not Free keep their previous result exactly (with `previous`),
+    // so only the Free area changes; constraints and drainage do not act on those levels; the
+    // recorded history holds the uncorrected state for each of their passes. 0 (default) = a full
+    // synthesis; 0..16.
+    int preview_levels = 0;
     Drainage drainage = Drainage::Off;  // Breach costs about +100% synthesis time (docs/realism.md)
 };
 

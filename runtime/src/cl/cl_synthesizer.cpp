@@ -266,6 +266,20 @@ private:
         return run(correct_.get(), count_x, count_y);
     }
 
+    // A preview level is one read-back and write-back of the level's state (no kernel: it is as cheap
+    // on the host and the reference defines it).
+    Status previewLevel(int level, const synth::LevelRegion& region, const std::vector<uint8_t>& coherence,
+                        const synth::PassHistory& previous) override {
+        std::vector<synth::PixelState> state(region.pixels());
+        static_assert(sizeof(synth::PixelState) == sizeof(cl_float4), "state layout");
+        TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
+                                        state.data(), 0, nullptr, nullptr));
+        synth::referencePreviewLevel(db_->levels[level], region, coherence, previous, state);
+        TS_CL_CHECK(clEnqueueWriteBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
+                                         state.data(), 0, nullptr, nullptr));
+        return Status::ok();
+    }
+
     // Breaching runs on the host (drainage_breach.h): the level's state is read back once, breached
     // and written back.
     float depthMargin(int level) override { return depth_margins_.at(*db_, level); }

@@ -324,13 +324,22 @@ const PasteConstraint* EditSession::paste(EditId id) const { return byId(impl_->
 
 // ---- Undo ----
 
-void EditSession::deferLifts(bool defer) { impl_->terrain->deferLifts(defer); }
+void EditSession::deferLifts(bool defer) {
+    // Set on every gesture: a re-seed replaces the terrain object.
+    impl_->terrain->setPreviewLevels(impl_->drag_preview_levels);
+    impl_->terrain->deferLifts(defer);
+}
 
 Result<PixelWindow> EditSession::liftDeferred() {
     Impl& s = *impl_;
     s.terrain->deferLifts(false);
     if (!s.terrain->liftsPending()) return PixelWindow{};
     return s.edit(true, false, [&] { return s.terrain->liftDeferred(); });
+}
+
+void EditSession::setDragPreviewLevels(int levels) {
+    TERRASYNTH_REQUIRE(levels >= 0 && levels <= 2, "setDragPreviewLevels takes 0..2 levels");
+    impl_->drag_preview_levels = levels;
 }
 
 void EditSession::beginGesture() { ++impl_->gesture_depth; }

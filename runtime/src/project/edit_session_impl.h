@@ -67,6 +67,7 @@ struct EditSession::Impl {
 
     uint32_t seed = 0;
     std::optional<IncrementalTerrain> terrain;
+    int drag_preview_levels = 0;  // setDragPreviewLevels, given to the terrain on every deferLifts
     std::shared_ptr<const project::WorldView> world;          // the reference synthesis
     std::shared_ptr<const std::vector<float>> reference0;     // ... of the extent at level 0
     EditLists lists;

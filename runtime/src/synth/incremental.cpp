@@ -202,32 +202,40 @@ Status IncrementalTerrain::applyEdit(std::shared_ptr<const SynthesisConstraints>
         return Status::ok();
     }
     noteDeferred(area.box);
-    return resynthesize(area.box, &area.mask, std::move(next), liftsNow());
+    return resynthesize(area.box, &area.mask, std::move(next), liftsNow(), previewNow());
 }
 
 Status IncrementalTerrain::update(std::shared_ptr<const SynthesisConstraints> constraints, const PixelWindow& changed) {
     noteDeferred(changed);
-    return resynthesize(changed, nullptr, adoptCurveLifts(std::move(constraints), params_.constraints.get()), liftsNow());
+    return resynthesize(changed, nullptr, adoptCurveLifts(std::move(constraints), params_.constraints.get()), liftsNow(),
+                        previewNow());
 }
 
 void IncrementalTerrain::noteDeferred(const PixelWindow& free_area) {
-    if (hold_point_heights_ && lifts_deferred_) deferred_area_ = uniteWindows(deferred_area_, free_area);
+    if (lifts_deferred_ && (hold_point_heights_ || preview_levels_ > 0))
+        deferred_area_ = uniteWindows(deferred_area_, free_area);
+}
+
+void IncrementalTerrain::setPreviewLevels(int levels) {
+    TERRASYNTH_REQUIRE(levels >= 0 && levels <= 2, "setPreviewLevels takes 0..2 levels");
+    preview_levels_ = levels;
 }
 
 Status IncrementalTerrain::liftDeferred(PixelWindow* changed) {
     const PixelWindow area = deferred_area_;
     deferred_area_ = {0, 0, 0, 0};
     if (changed) *changed = area;
-    if (area.empty() || !hold_point_heights_) return Status::ok();
-    // The whole union is re-synthesized Free: the constraints inside it are lifted against the
-    // terrain it will have, not against the drag's intermediate one.
-    return resynthesize(area, nullptr, params_.constraints, true);
+    if (area.empty()) return Status::ok();
+    // The whole union is re-synthesized Free (and in full after a preview): the constraints inside
+    // it are lifted against the terrain it will have, not against the drag's intermediate one.
+    return resynthesize(area, nullptr, params_.constraints, hold_point_heights_);
 }
 
 // Free inside `free_area` (or where `free_mask`, over the extent, is set), Coherent in a band around
 // it, Frozen beyond and wherever a paste froze the terrain; re-synthesizes that window only.
 Status IncrementalTerrain::resynthesize(const PixelWindow& free_area, const std::vector<uint8_t>* free_mask,
-                                        std::shared_ptr<const SynthesisConstraints> constraints, bool lift_points) {
+                                        std::shared_ptr<const SynthesisConstraints> constraints, bool lift_points,
+                                        int preview_levels) {
     const PixelWindow band = growWindow(free_area, kCoherentBand);
     // Frozen pixels reached by the window's own margin (2 pixels per subpass at level 0) settle
     // the band's neighbourhoods exactly as a full synthesis would.
@@ -259,6 +267,7 @@ Status IncrementalTerrain::resynthesize(const PixelWindow& free_area, const std:
         params.constraints = std::move(lifted.value());
     }
     params.record_history = true;
+    params.preview_levels = preview_levels;
     auto out = synthesizer_->synthesize(window, params, 0, false);
     if (!out) return out.status();
     if (lift_points && params.constraints && !params.constraints->curves.empty()) {

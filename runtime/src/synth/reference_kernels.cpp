@@ -192,6 +192,45 @@ float phiD(float x, float d, float s, float lambda) {
 
 }  // namespace
 
+void referencePreviewLevel(const DatabaseLevel& db, const LevelRegion& region, const std::vector<uint8_t>& coherence,
+                           const PassHistory& previous, std::vector<PixelState>& state) {
+    // Atlas coordinates are never negative: truncation is floor (as in the kernels).
+    for (PixelState& p : state) {
+        p.x = static_cast<float>(static_cast<int>(p.x + 0.5f));
+        p.y = static_cast<float>(static_cast<int>(p.y + 0.5f));
+    }
+    // A child sits a quarter of a parent pixel from its own parent's centre towards the parent on
+    // its side (west when its global x is even, east when odd), whose V the neighbour on that side
+    // holds: V moves a quarter of the way there, when that neighbour continues the child's own
+    // exemplar coordinate (inside a patch, where V ramps under a constraint). Across a seam the
+    // offsets differ by whatever makes the parents' heights meet, so V stays.
+    const std::vector<PixelState> upsampled = state;
+    auto shift = [&](size_t i, size_t o, float dx, float dy) {
+        const PixelState &a = upsampled[i], &b = upsampled[o];
+        const bool continues = b.x == a.x + dx && b.y == a.y + dy;
+        return continues ? 0.25f * (b.v - a.v) : 0.0f;
+    };
+    const bool can_keep = !coherence.empty() && !previous.index.empty();
+    for (int y = 0; y < region.height; ++y) {
+        const int oy = ((region.y + y) & 1) ? y + 1 : y - 1;
+        for (int x = 0; x < region.width; ++x) {
+            const size_t i = static_cast<size_t>(y) * region.width + x;
+            if (can_keep && static_cast<Coherence>(coherence[i]) != Coherence::Free && previous.index[i] != kNoPrevious) {
+                const uint32_t q = previous.index[i];
+                state[i].x = static_cast<float>(q % static_cast<uint32_t>(db.width));
+                state[i].y = static_cast<float>(q / static_cast<uint32_t>(db.width));
+                state[i].v = previous.v[i];
+                continue;
+            }
+            const int ox = ((region.x + x) & 1) ? x + 1 : x - 1;
+            float v = upsampled[i].v;
+            if (ox >= 0 && ox < region.width) v += shift(i, static_cast<size_t>(y) * region.width + ox, static_cast<float>(ox - x), 0.0f);
+            if (oy >= 0 && oy < region.height) v += shift(i, static_cast<size_t>(oy) * region.width + x, 0.0f, static_cast<float>(oy - y));
+            state[i].v = v;
+        }
+    }
+}
+
 void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y, int inset,
                       const CorrectionContext& context, std::vector<PixelState>& state) {
     static const int kDiagonals[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};

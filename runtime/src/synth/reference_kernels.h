@@ -49,6 +49,16 @@ struct CorrectionContext {
 void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int parity_x, int parity_y, int inset,
                       const CorrectionContext& context, std::vector<PixelState>& state);
 
+// A drag preview's level (SynthesisParams::preview_levels), on the upsampled state: every pixel
+// that is not Free and has a previous result takes that result, as a Frozen pixel of `correct`
+// does; the others keep their coordinate, snapped to the nearest whole atlas pixel so that the
+// history recorded from it gives back the same heights, with V interpolated bilinearly between the
+// parents (upsampling copies a parent's V to its 2x2 children, which only the correction passes
+// would smooth: a constraint's ramp would show as 2-pixel steps). `coherence` and `previous` are per
+// region pixel (empty: none kept).
+void referencePreviewLevel(const DatabaseLevel& db, const LevelRegion& region, const std::vector<uint8_t>& coherence,
+                           const PassHistory& previous, std::vector<PixelState>& state);
+
 // E at a real-valued atlas coordinate (bilinear), in metres: the height resolve gives a pixel whose
 // state is (sx, sy) before its offset V.
 float heightBilinear(const DatabaseLevel& db, float sx, float sy);

@@ -51,6 +51,11 @@ public:
         referenceCorrect(db_.levels[level], region, px, py, inset, context_, current_);
         return Status::ok();
     }
+    Status previewLevel(int level, const LevelRegion& region, const std::vector<uint8_t>& coherence,
+                        const PassHistory& previous) override {
+        referencePreviewLevel(db_.levels[level], region, coherence, previous, current_);
+        return Status::ok();
+    }
     float depthMargin(int level) override { return margins_.at(db_, level); }
     Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) override {
         breachPits(db_.levels[level], region, radius, inputs, current_);

@@ -39,6 +39,7 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
     if (window.x < -kMaxGlobalCoordinate || window.x > kMaxGlobalCoordinate || window.y < -kMaxGlobalCoordinate ||
         window.y > kMaxGlobalCoordinate)
         return Status::error("window origin beyond +-2^29 pixels");
+    if (params.preview_levels < 0 || params.preview_levels > 16) return Status::error("preview_levels must be 0..16");
     if (params.first_constrained_level < 0 || params.first_constrained_level > 12)
         return Status::error("first_constrained_level must be 0..12");
     if (params.constraints) {
@@ -142,18 +143,29 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
     if (history) history->levels.resize(coarsest + 1);
     auto correctLevel = [&](int level) -> Status {
         const LevelRegion& region = plan.regions[level];
-        const LevelConstraints constraints =
-            constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, params.hold_on_free_levels,
-                                region, db.meters_per_pixel);
         const std::vector<uint8_t> coherence =
             params.previous ? coherenceCodes(params.coherence.get(), level, region) : std::vector<uint8_t>();
-        Status begun = steps.beginLevel(level, region, constraints, coherence, params.seed);
-        if (!begun) return begun;
         const int passes = passesAt(params, level, coarsest);
         if (history) {
             history->levels[level] = {region.x, region.y, region.width, region.height, {}};
             history->levels[level].passes.resize(passes + (drain ? 1 : 0));
         }
+        if (level < output_level + params.preview_levels && level < coarsest) {
+            // A preview level: the upsampled state, with what is not Free kept from the last pass.
+            Status s = steps.previewLevel(level, region, coherence,
+                                          previousPass(params.previous.get(), level,
+                                                       historyPassesAt(params, level, coarsest) - 1, region));
+            if (!s || !history) return s;
+            auto& recorded = history->levels[level].passes;
+            s = steps.recordPass(level, region, recorded[0]);
+            for (size_t pass = 1; pass < recorded.size(); ++pass) recorded[pass] = recorded[0];
+            return s;
+        }
+        const LevelConstraints constraints =
+            constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, params.hold_on_free_levels,
+                                region, db.meters_per_pixel);
+        Status begun = steps.beginLevel(level, region, constraints, coherence, params.seed);
+        if (!begun) return begun;
         int subpass = 0;
         for (int pass = 0; pass < passes; ++pass) {
             Status s = steps.beginPass(level, region, previousPass(params.previous.get(), level, pass, region));
@@ -180,7 +192,10 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
     if (!s) return s;
     for (int level = coarsest; level >= output_level; --level) {
         if (level < coarsest) {
-            s = steps.upsample(level, plan.regions[level + 1], plan.regions[level], params.jitter, params.seed);
+            // A preview level is not jittered: no correction follows to make the jitter coherent.
+            const bool preview = level < output_level + params.preview_levels;
+            s = steps.upsample(level, plan.regions[level + 1], plan.regions[level], preview ? 0.0f : params.jitter,
+                               params.seed);
             if (!s) return s;
             peak = std::max(peak, plan.regions[level].pixels() + plan.regions[level + 1].pixels());
         }

@@ -37,6 +37,11 @@ public:
     virtual Status beginPass(int level, const LevelRegion& region, const PassHistory& previous) = 0;
     // Copies the state after a pass into `out` (index and V per region pixel).
     virtual Status recordPass(int level, const LevelRegion& region, SynthesisHistory::Pass& out) = 0;
+    // A drag preview's level instead of its passes (SynthesisParams::preview_levels): pixels that are
+    // not Free take `previous` (the level's last recorded pass), the others keep the upsampled state
+    // snapped to whole atlas pixels (referencePreviewLevel).
+    virtual Status previewLevel(int level, const LevelRegion& region, const std::vector<uint8_t>& coherence,
+                                const PassHistory& previous) = 0;
     // Corrects the pixels of one parity class at least `inset` pixels inside the region: the ring
     // outside would be spoiled by the margin anyway (synthesis_plan.h), so it is not computed.
     virtual Status correct(int level, const LevelRegion& region, int parity_x, int parity_y, int inset) = 0;
