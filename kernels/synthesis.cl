@@ -267,11 +267,13 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             for (int i = 0; i < seen_count; ++i) repeated = repeated || seen[i] == c;
             if (repeated) continue;
             seen[seen_count++] = c;
-            // C_1(c) = c moved into its exemplar's interior, C_2(c) from PatchMatch (s4), one load.
+            // C_1(c) = c, none (-1) outside its exemplar's interior (kNoIdentityCandidate in
+            // reference_kernels.h), C_2(c) from PatchMatch (s4), one load.
             const uint2 table = similar[c];
             const int candidates[2] = {(int)table.x, (int)table.y};
             for (int j = 0; j < 2; ++j) {
                 const int q = candidates[j];
+                if (q < 0) continue;
                 if (target != 0u && ((target >> atlas_type[q]) & 1u) == 0u) continue;  // s5.2 rejection
                 float h;
                 const float cost = candidate_cost(appearance, width, ns, q, weight, j == 0 ? 1.0f : 2.0f, best_cost, &h);
@@ -308,6 +310,7 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         const float4 s = state[pixel];
         const int c = floor_nonneg(s.y + 0.5f) * width + floor_nonneg(s.x + 0.5f);
         best_q = (int)similar[c].x;
+        if (best_q < 0) best_q = c;  // S(p) is interior after upsampling; never read outside the atlas
         float h = 0.0f;
         candidate_cost(appearance, width, ns, best_q, weight, 1.0f, INFINITY, &h);
         best_h = h;

@@ -122,17 +122,19 @@ private:
             const std::vector<uint32_t> cumulative = synth::cumulativeInteriorAreas(l);
             if (cumulative.empty() || cumulative.back() == 0) return Status::error("database level without interior pixels");
             auto appearance = upload(l.appearance.data(), l.appearance.size() * sizeof(uint16_t));
-            // The k = 2 table of s4 as one uint2 per atlas pixel: C_1(c) = c moved into its exemplar's
-            // interior (Lefebvre & Hoppe 2005's identity candidate) and C_2(c) from PatchMatch.
+            // The k = 2 table of s4 as one uint2 per atlas pixel: C_1(c) = c (Lefebvre & Hoppe 2005's
+            // identity candidate) when c lies in its exemplar's interior, else none
+            // (synth::kNoIdentityCandidate), and C_2(c) from PatchMatch.
             std::vector<cl_uint2> candidate_table(l.pixelCount());
             for (size_t c = 0; c < candidate_table.size(); ++c) {
                 candidate_table[c].s[0] = static_cast<cl_uint>(c);
                 candidate_table[c].s[1] = l.similar[c];
                 if (l.exemplar[c] == kNoExemplar) continue;
                 const AtlasRect& r = l.rects[l.exemplar[c]];
-                const int x = std::clamp(static_cast<int>(c % l.width), r.x + kInteriorMargin, r.x + r.width - 1 - kInteriorMargin);
-                const int y = std::clamp(static_cast<int>(c / l.width), r.y + kInteriorMargin, r.y + r.height - 1 - kInteriorMargin);
-                candidate_table[c].s[0] = static_cast<cl_uint>(y * l.width + x);
+                const int x = static_cast<int>(c % l.width), y = static_cast<int>(c / l.width);
+                if (x < r.x + kInteriorMargin || x > r.x + r.width - 1 - kInteriorMargin || y < r.y + kInteriorMargin ||
+                    y > r.y + r.height - 1 - kInteriorMargin)
+                    candidate_table[c].s[0] = synth::kNoIdentityCandidate;
             }
             auto similar = upload(candidate_table.data(), candidate_table.size() * sizeof(cl_uint2));
             auto exemplar = upload(l.exemplar.data(), l.exemplar.size());

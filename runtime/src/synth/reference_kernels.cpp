@@ -287,11 +287,12 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                     const int cy = static_cast<int>(std::floor(s.y - static_cast<float>(ddy) + 0.5f));
                     const int c = cy * db.width + cx;
                     const AtlasRect& r = db.rects[db.exemplar[c]];
-                    const int qx = std::clamp(cx, r.x + kInteriorMargin, r.x + r.width - 1 - kInteriorMargin);
-                    const int qy = std::clamp(cy, r.y + kInteriorMargin, r.y + r.height - 1 - kInteriorMargin);
-                    const int candidates[2] = {qy * db.width + qx, static_cast<int>(db.similar[c])};
+                    const bool interior = cx >= r.x + kInteriorMargin && cx <= r.x + r.width - 1 - kInteriorMargin &&
+                                          cy >= r.y + kInteriorMargin && cy <= r.y + r.height - 1 - kInteriorMargin;
+                    const int candidates[2] = {interior ? c : -1, static_cast<int>(db.similar[c])};  // kNoIdentityCandidate
                     for (int j = 0; j < 2; ++j) {
                         const int q = candidates[j];
+                        if (q < 0) continue;
                         if (target != 0u && ((target >> db.type[q]) & 1u) == 0u) continue;  // s5.2 rejection
                         float h;
                         const float cost = candidateCost(db, ns, q, weight, j == 0 ? 1.0f : 2.0f, &h);
@@ -325,14 +326,10 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
             }
             if (best_q < 0) {
                 // Every candidate was rejected (a painted type without seed coordinates at this
-                // level) or costs too much to compare: the pixel keeps its own coordinate, C_1 of
-                // S(p) (synthesis.cl does the same).
+                // level) or costs too much to compare: the pixel keeps its own coordinate S(p)
+                // (interior after upsampling; synthesis.cl does the same).
                 const PixelState& s = state[pixel];
-                const int c = static_cast<int>(std::floor(s.y + 0.5f)) * db.width + static_cast<int>(std::floor(s.x + 0.5f));
-                const AtlasRect& r = db.rects[db.exemplar[c]];
-                const int qx = std::clamp(c % db.width, r.x + kInteriorMargin, r.x + r.width - 1 - kInteriorMargin);
-                const int qy = std::clamp(c / db.width, r.y + kInteriorMargin, r.y + r.height - 1 - kInteriorMargin);
-                best_q = qy * db.width + qx;
+                best_q = static_cast<int>(std::floor(s.y + 0.5f)) * db.width + static_cast<int>(std::floor(s.x + 0.5f));
                 candidateCost(db, ns, best_q, weight, 1.0f, &best_h);
             }
             float v = best_h * scale[0];

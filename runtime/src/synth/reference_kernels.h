@@ -15,6 +15,13 @@ namespace terrasynth::synth {
 // Per synthesis pixel: exemplar atlas coordinate S (x, y), height offset V, and the drainage ceiling
 // (issue 17, synth/drainage_breach.h): the height a channel carved at the coarser level must not
 // rise above; +infinity where there is none.
+// C_1 of a candidate source outside its exemplar's interior: none. Moving it to the nearest
+// interior pixel (as before) repeated the interior's edge row or column wherever a coherent patch
+// ran into it, a fixed point of the passes that showed as stripes on exemplars barely taller than a
+// patch (docs/realism.md, ttb_bigtujunga); without it the pixel takes another neighbour's
+// candidate or C_2, a seam the passes repair.
+constexpr uint32_t kNoIdentityCandidate = 0xffffffffu;
+
 struct PixelState {
     float x = 0, y = 0, v = 0, ceiling = 0;
 };
