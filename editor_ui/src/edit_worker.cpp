@@ -127,6 +127,7 @@ void EditWorker::attachTerrain(osg::ref_ptr<plugin::TerrainNode> terrain) {
 
 void EditWorker::submit(EditRequest request) {
     const double now = steadySeconds();
+    EditRequest replaced;  // destroyed after the lock
     {
         std::lock_guard<std::mutex> lock(mutex_);
         if (stop_) return;
@@ -137,6 +138,7 @@ void EditWorker::submit(EditRequest request) {
             Queued& tail = queue_.back();
             const double submitted = tail.submitted_s;
             const int superseded = tail.superseded + 1;
+            replaced = std::move(tail.request);
             tail.request = std::move(request);
             tail.submitted_s = submitted;
             tail.superseded = superseded;
@@ -316,7 +318,8 @@ PixelWindow EditWorker::refreshMasks() {
 
 void EditWorker::publishView() {
     const EditSession& s = *session_;
-    auto v = std::make_shared<SessionView>();
+    auto built = std::make_shared<SessionView>();
+    SessionView* v = built.get();
     v->edit_count = s.editCount();
     v->can_undo = s.canUndo();
     v->can_redo = s.canRedo();
@@ -335,8 +338,13 @@ void EditWorker::publishView() {
     v->warnings = s.warnings();
     v->database = s.databasePtr();
     v->coarsest_synthesized_level = coarsestSynthesizedLevel(*v->database, s.project().synthesis);
-    std::lock_guard<std::mutex> lock(mutex_);
-    view_ = std::move(v);
+    std::shared_ptr<const SessionView> previous = std::move(built);
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        view_.swap(previous);
+    }
+    // The old view is released here, after the lock: the UI thread's submit() must not wait for
+    // its destruction.
 }
 
 }  // namespace terrasynth::editor
