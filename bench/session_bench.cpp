@@ -43,6 +43,14 @@ void dragStep(benchmark::State& state, EditSession& s, EditId id, int step) {
     if (!r) state.SkipWithError(r.message().c_str());
 }
 
+// A gesture as the editor starts a drag: with `defer` the steps keep their lifts, with
+// `preview_levels` they preview that many finest levels (EditSession::setDragPreviewLevels).
+void beginDrag(EditSession& s, bool defer, int preview_levels) {
+    s.beginGesture();
+    s.setDragPreviewLevels(preview_levels);
+    s.deferLifts(defer);
+}
+
 }  // namespace
 
 // Drag steps of one gesture; with `defer` as the editor drags (EditSession::deferLifts): a step
@@ -53,9 +61,7 @@ static void dragGesture(benchmark::State& state, bool defer, int preview_levels 
     if (!s) return;
     const EditId id = dragged(*s);
     int step = 0;
-    s->beginGesture();
-    s->setDragPreviewLevels(preview_levels);
-    s->deferLifts(defer);
+    beginDrag(*s, defer, preview_levels);
     for (auto _ : state) dragStep(state, *s, id, step++);
     if (auto lifted = s->liftDeferred(); !lifted) state.SkipWithError(lifted.message().c_str());
     s->endGesture();
@@ -78,9 +84,7 @@ static void BM_PreviewedDragFinish(benchmark::State& state) {
     int step = 0;
     for (auto _ : state) {
         state.PauseTiming();
-        s->beginGesture();
-        s->setDragPreviewLevels(1);
-        s->deferLifts(true);
+        beginDrag(*s, true, 1);
         for (int i = 0; i < 8; ++i) dragStep(state, *s, id, step++);
         state.ResumeTiming();
         if (auto lifted = s->liftDeferred(); !lifted) state.SkipWithError(lifted.message().c_str());

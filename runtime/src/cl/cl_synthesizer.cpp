@@ -268,32 +268,33 @@ private:
         return run(correct_.get(), count_x, count_y);
     }
 
-    // A preview level is one read-back and write-back of the level's state (no kernel: it is as cheap
-    // on the host and the reference defines it).
-    Status previewLevel(int level, const synth::LevelRegion& region, const std::vector<uint8_t>& coherence,
-                        const synth::PassHistory& previous) override {
+    // Runs `edit` on the level's state on the host: one read-back, one write-back.
+    template <class Edit>
+    Status editStateOnHost(const synth::LevelRegion& region, Edit&& edit) {
         std::vector<synth::PixelState> state(region.pixels());
         static_assert(sizeof(synth::PixelState) == sizeof(cl_float4), "state layout");
         TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
                                         state.data(), 0, nullptr, nullptr));
-        synth::referencePreviewLevel(db_->levels[level], region, coherence, previous, state);
+        edit(state);
         TS_CL_CHECK(clEnqueueWriteBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
                                          state.data(), 0, nullptr, nullptr));
         return Status::ok();
     }
 
-    // Breaching runs on the host (drainage_breach.h): the level's state is read back once, breached
-    // and written back.
+    // A preview level runs on the host (no kernel: it is as cheap there and the reference defines it).
+    Status previewLevel(int level, const synth::LevelRegion& region, const std::vector<uint8_t>& coherence,
+                        const synth::PassHistory& previous) override {
+        return editStateOnHost(region, [&](std::vector<synth::PixelState>& state) {
+            synth::referencePreviewLevel(db_->levels[level], region, coherence, previous, state);
+        });
+    }
+
+    // Breaching runs on the host (drainage_breach.h).
     float depthMargin(int level) override { return depth_margins_.at(*db_, level); }
     Status drain(int level, const synth::LevelRegion& region, int radius, const synth::DrainageInputs& inputs) override {
-        std::vector<synth::PixelState> state(region.pixels());
-        static_assert(sizeof(synth::PixelState) == sizeof(cl_float4), "state layout");
-        TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
-                                        state.data(), 0, nullptr, nullptr));
-        synth::breachPits(db_->levels[level], region, radius, inputs, state);
-        TS_CL_CHECK(clEnqueueWriteBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
-                                         state.data(), 0, nullptr, nullptr));
-        return Status::ok();
+        return editStateOnHost(region, [&](std::vector<synth::PixelState>& state) {
+            synth::breachPits(db_->levels[level], region, radius, inputs, state);
+        });
     }
 
     Status resolve(int level, const synth::LevelRegion& region, const synth::LevelRegion& out, SynthesisOutput& output,

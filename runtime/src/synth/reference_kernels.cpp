@@ -68,6 +68,14 @@ namespace {
 
 int floorDiv(int v, int d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
 
+// A frozen (or kept) pixel takes its previous result: coordinate and offset V, ceiling unchanged.
+void takePrevious(const DatabaseLevel& db, const PassHistory& previous, size_t pixel, PixelState& out) {
+    const uint32_t q = previous.index[pixel];
+    out.x = static_cast<float>(q % static_cast<uint32_t>(db.width));
+    out.y = static_cast<float>(q / static_cast<uint32_t>(db.width));
+    out.v = previous.v[pixel];
+}
+
 int wrapInto(int v, int n) {
     const int m = v % n;
     return m < 0 ? m + n : m;
@@ -216,10 +224,7 @@ void referencePreviewLevel(const DatabaseLevel& db, const LevelRegion& region, c
         for (int x = 0; x < region.width; ++x) {
             const size_t i = static_cast<size_t>(y) * region.width + x;
             if (can_keep && static_cast<Coherence>(coherence[i]) != Coherence::Free && previous.index[i] != kNoPrevious) {
-                const uint32_t q = previous.index[i];
-                state[i].x = static_cast<float>(q % static_cast<uint32_t>(db.width));
-                state[i].y = static_cast<float>(q / static_cast<uint32_t>(db.width));
-                state[i].v = previous.v[i];
+                takePrevious(db, previous, i, state[i]);
                 continue;
             }
             const int ox = ((region.x + x) & 1) ? x + 1 : x - 1;
@@ -262,10 +267,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 const int q = static_cast<int>(context.previous.index[pixel]);
                 const auto code = static_cast<Coherence>(context.coherence[pixel]);
                 if (code == Coherence::Frozen) {
-                    PixelState& out = state[pixel];
-                    out.x = static_cast<float>(q % db.width);
-                    out.y = static_cast<float>(q / db.width);
-                    out.v = context.previous.v[pixel];
+                    takePrevious(db, context.previous, pixel, state[pixel]);
                     continue;
                 }
                 // A repainted pixel's previous source competes only when it is of a painted type
