@@ -11,7 +11,7 @@ namespace {
 
 class ReferenceSteps final : public SynthesisSteps {
 public:
-    ReferenceSteps(const ExemplarDatabase& db, DepthMargins& margins) : db_(db), margins_(margins) {}
+    ReferenceSteps(const ExemplarDatabase& db, DrainageLevels& drainage) : db_(db), drainage_(drainage) {}
     Status init(int level, const LevelRegion& region, uint32_t seed) override {
         referenceInit(db_.levels[level], region, seed, level, current_);
         return Status::ok();
@@ -56,7 +56,8 @@ public:
         referencePreviewLevel(db_.levels[level], region, coherence, previous, current_);
         return Status::ok();
     }
-    float depthMargin(int level) override { return margins_.at(db_, level); }
+    float depthMargin(int level) override { return drainage_.depthMargin(db_, level); }
+    const std::vector<float>& closedDepth(int level) override { return drainage_.closedDepth(db_, level); }
     Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) override {
         breachPits(db_.levels[level], region, radius, inputs, current_);
         return Status::ok();
@@ -71,7 +72,7 @@ public:
 
 private:
     const ExemplarDatabase& db_;
-    DepthMargins& margins_;
+    DrainageLevels& drainage_;
     std::vector<PixelState> current_;
     CorrectionContext context_;
 };
@@ -81,7 +82,7 @@ public:
     explicit ReferenceSynthesizer(std::shared_ptr<const ExemplarDatabase> db) : Synthesizer(std::move(db)) {}
     Result<SynthesisOutput> synthesize(const PixelWindow& window, const SynthesisParams& params, int output_level,
                                        bool want_sources) override {
-        ReferenceSteps steps(*db_, margins_);
+        ReferenceSteps steps(*db_, drainage_);
         size_t peak = 0;
         auto out = runSynthesis(*db_, window, params, output_level, want_sources, steps, &peak);
         if (out) bytes_per_pixel_ = static_cast<double>(peak * sizeof(PixelState)) / (window.width * window.height) +
@@ -93,7 +94,7 @@ public:
 
 private:
     double bytes_per_pixel_ = 0.0;
-    DepthMargins margins_;
+    DrainageLevels drainage_;
 };
 
 }  // namespace
