@@ -56,9 +56,8 @@ struct DatabaseLevel {
     std::vector<uint8_t> exemplar;        // exemplar index per pixel
     // 1 where the exemplar pixel is in a closed depression of its exemplar at this level (raised by
     // Priority-Flood without epsilon, the exemplar's edge draining out), else 0; 0 in gutters.
-    // Drainage (synthesizer.h) measures the depth of level 0's closed depressions itself, so a
-    // synthesized basin copied from a real one (dune hollows, karst, crater lakes, salars) keeps
-    // up to that depth.
+    // Drainage (synthesizer.h) leaves pits copied from such pixels alone: dune hollows, karst,
+    // crater lakes and salars are real.
     std::vector<uint8_t> closed;
     std::vector<AtlasRect> rects;         // per exemplar
     // Per type: kTypeSeedCount atlas indices of interior pixels of that type, drawn at random

@@ -290,8 +290,7 @@ private:
     }
 
     // Breaching runs on the host (drainage_breach.h).
-    float depthMargin(int level) override { return drainage_levels_.depthMargin(*db_, level); }
-    const std::vector<float>& closedDepth(int level) override { return drainage_levels_.closedDepth(*db_, level); }
+    float depthMargin(int level) override { return depth_margins_.at(*db_, level); }
     Status drain(int level, const synth::LevelRegion& region, int radius, const synth::DrainageInputs& inputs) override {
         return editStateOnHost(region, [&](std::vector<synth::PixelState>& state) {
             synth::breachPits(db_->levels[level], region, radius, inputs, state);
@@ -348,7 +347,7 @@ private:
     cl_uint seed_salt_ = 0;
     size_t current_capacity_ = 0, next_capacity_ = 0;
     size_t local_[2] = {32, 2};
-    synth::DrainageLevels drainage_levels_;
+    synth::DepthMargins depth_margins_;
     double bytes_per_pixel_ = 0.0;
 };
 

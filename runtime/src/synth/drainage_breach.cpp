@@ -1,7 +1,5 @@
 #include "synth/drainage_breach.h"
 
-#include "terrasynth/terrain_stats.h"
-
 #include <algorithm>
 #include <cmath>
 #include <queue>
@@ -106,11 +104,9 @@ private:
     std::vector<uint8_t> done_;
 };
 
-// How deep a depression the pixel's source lies in within its own exemplar (closedDepths), metres.
-float sourceBasinDepth(const DatabaseLevel& db, const std::vector<float>* closed_depth, const PixelState& s) {
-    if (!closed_depth || closed_depth->size() != db.pixelCount()) return 0.0f;
+bool copiedFromClosedDepression(const DatabaseLevel& db, const PixelState& s) {
     const size_t q = static_cast<size_t>(std::lround(s.y)) * db.width + static_cast<size_t>(std::lround(s.x));
-    return q < closed_depth->size() ? (*closed_depth)[q] : 0.0f;
+    return q < db.closed.size() && db.closed[q];
 }
 
 // (height, row, column) order: of two equal heights the earlier pixel is the lower.
@@ -144,66 +140,11 @@ float breachDepthMargin(const DatabaseLevel& db) {
     return kBreachDepthFraction * relief[relief.size() / 2];
 }
 
-std::vector<float> ownFillDepths(const DatabaseLevel& db) {
-    std::vector<float> depth(db.pixelCount(), 0.0f);
-    for (const AtlasRect& r : db.rects) {
-        if (r.width < 3 || r.height < 3) continue;
-        Heightfield field(r.width, r.height, 1.0);
-        for (int y = 0; y < r.height; ++y)
-            for (int x = 0; x < r.width; ++x)
-                field.heights[static_cast<size_t>(y) * r.width + x] = db.height_m[static_cast<size_t>(r.y + y) * db.width + r.x + x];
-        const Heightfield filled = fillDepressions(field, false);
-        for (int y = 0; y < r.height; ++y)
-            for (int x = 0; x < r.width; ++x) {
-                const size_t i = static_cast<size_t>(y) * r.width + x;
-                depth[static_cast<size_t>(r.y + y) * db.width + r.x + x] = std::max(0.0f, filled.heights[i] - field.heights[i]);
-            }
-    }
-    return depth;
-}
-
-std::vector<float> closedDepths(const ExemplarDatabase& db, int level, const std::vector<float>& level0) {
-    const DatabaseLevel& fine = db.levels[0];
-    const DatabaseLevel& l = db.levels[level];
-    if (level == 0) return level0;
-    std::vector<float> depth(l.pixelCount(), 0.0f);
-    const int block = 1 << level;
-    for (size_t e = 0; e < l.rects.size() && e < fine.rects.size(); ++e) {
-        const AtlasRect& r = l.rects[e];
-        const AtlasRect& f = fine.rects[e];
-        for (int y = 0; y < r.height; ++y)
-            for (int x = 0; x < r.width; ++x) {
-                double sum = 0.0;
-                int count = 0;
-                for (int fy = y * block; fy < std::min((y + 1) * block, f.height); ++fy)
-                    for (int fx = x * block; fx < std::min((x + 1) * block, f.width); ++fx, ++count)
-                        sum += level0[static_cast<size_t>(f.y + fy) * fine.width + f.x + fx];
-                if (count > 0) depth[static_cast<size_t>(r.y + y) * l.width + r.x + x] = static_cast<float>(sum / count);
-            }
-    }
-    return depth;
-}
-
-void DrainageLevels::fit(const ExemplarDatabase& db) {
-    if (margins_.size() == db.levels.size()) return;
-    margins_.assign(db.levels.size(), 0.0f);
-    margin_known_.assign(db.levels.size(), 0);
-    closed_depths_.assign(db.levels.size(), {});
-    closed_known_.assign(db.levels.size(), 0);
-}
-
-float DrainageLevels::depthMargin(const ExemplarDatabase& db, int level) {
-    fit(db);
+float DepthMargins::at(const ExemplarDatabase& db, int level) {
+    if (margins_.size() != db.levels.size()) margins_.assign(db.levels.size(), 0.0f), known_.assign(db.levels.size(), 0);
     // No finer level follows level 0, so its paths need only reach the first lower pixel.
-    if (!margin_known_[level]) margins_[level] = level > 0 ? breachDepthMargin(db.levels[level]) : 0.0f, margin_known_[level] = 1;
+    if (!known_[level]) margins_[level] = level > 0 ? breachDepthMargin(db.levels[level]) : 0.0f, known_[level] = 1;
     return margins_[level];
-}
-
-const std::vector<float>& DrainageLevels::closedDepth(const ExemplarDatabase& db, int level) {
-    fit(db);
-    if (!closed_known_[0]) closed_depths_[0] = ownFillDepths(db.levels[0]), closed_known_[0] = 1;
-    if (!closed_known_[level]) closed_depths_[level] = closedDepths(db, level, closed_depths_[0]), closed_known_[level] = 1;
-    return closed_depths_[level];
 }
 
 BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int radius, const DrainageInputs& inputs,
@@ -236,26 +177,15 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
             for (int x = x0; x <= x1; ++x) {
                 if (!isPit(z, w, y * w + x)) continue;
                 ++out.counts.pits;
+                if (copiedFromClosedDepression(db, state[y * w + x])) continue;  // a real basin: keep it
                 const std::vector<int> path = search.find(z, fixed, w, h, x, y, inputs.depth_margin);
                 if (path.empty()) continue;
-                // A basin of the exemplar's own may stay as deep as it is there, not deeper.
-                const float allowed = sourceBasinDepth(db, inputs.closed_depth, state[y * w + x]);
-                float rise = 0.0f;
-                for (int c : path) rise = std::max(rise, z[c] - z[path.front()]);
-                if (rise <= allowed) {
-                    ++out.counts.kept;
-                    continue;
-                }
                 ++out.counts.breached;
-                // The kept water level `top`: the path is carved to a straight profile from the
-                // first cell at or above it down to the lower pixel, so the basin spills at `top`;
-                // cells already below the profile stay. allowed = 0: from the pit itself.
-                const float top = z[path.front()] + allowed, bottom = z[path.back()];
-                size_t dam = 0;
-                while (z[path[dam]] < top) ++dam;  // exists: the path rises above `top`
-                const float k = static_cast<float>(path.size() - 1 - dam);  // >= 1: the end is below `top`
+                // A straight profile from the pit down to the lower pixel; cells already below it stay.
+                const float top = z[path.front()], bottom = z[path.back()];
+                const float k = static_cast<float>(path.size() - 1);
                 for (size_t i = 0; i < path.size(); ++i) {
-                    const float line = i < dam ? INFINITY : top - (top - bottom) * (static_cast<float>(i - dam) / k);
+                    const float line = top - (top - bottom) * (static_cast<float>(i) / k);
                     out.ceiling[path[i]] = std::min(out.ceiling[path[i]], std::min(z[path[i]], line));
                 }
             }
@@ -269,7 +199,6 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     std::vector<float>& ceiling = workers[0].ceiling;
     for (size_t t = 0; t < workers.size(); ++t) {
         counts.pits += workers[t].counts.pits, counts.breached += workers[t].counts.breached;
-        counts.kept += workers[t].counts.kept;
         if (t > 0)
             for (size_t i = 0; i < ceiling.size(); ++i) ceiling[i] = std::min(ceiling[i], workers[t].ceiling[i]);
     }

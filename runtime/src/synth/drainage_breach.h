@@ -17,14 +17,6 @@
 //
 // Frozen pixels (s5.3) take their recorded post-breach state and are never carved; pixels under a
 // point or curve constraint are never carved either. A path may end at such a pixel, not cross it.
-//
-// Real basins (dune hollows, karst, crater lakes, over-deepened glacial troughs) stay, but no deeper
-// than the exemplar's own: a pit copied from an exemplar pixel whose full-resolution block lies on
-// average `d` metres under its exemplar's Priority-Flood surface (closedDepths) keeps a depression
-// of up to `d` metres: its path is carved from the first cell at `d` above the pit, and not at all
-// when it never rises more than `d` above the pit. (Skipping every pit copied from a closed pixel
-// of the level, as first done, kept 70% of orom_rockies' level-4 pits: valleys that averaging
-// closes, copied into troughs that then held 8% of a 1024^2 synthesis under 100-400 m of fill.)
 #pragma once
 
 #include <cstdint>
@@ -43,31 +35,14 @@ constexpr float kBreachDepthFraction = 0.5f;
 // row and column), in metres. Cost: a pass over a quarter of the level's atlas.
 float breachDepthMargin(const DatabaseLevel& db);
 
-// Per atlas pixel of a level: metres between its exemplar's depression-filled surface (Priority-Flood
-// without epsilon, the exemplar's edge draining out; DatabaseLevel::closed marks the same pixels) and
-// its height; 0 where it drains and in gutters. Cost: one fill of every exemplar at the level.
-std::vector<float> ownFillDepths(const DatabaseLevel& db);
-
-// Per atlas pixel of `level`: the mean of `level0` (ownFillDepths of level 0) over the pixel's
-// 2^level x 2^level block of its exemplar at level 0. Not the level's own fill: averaging closes
-// narrow gorges, so a coarse exemplar holds basins its full-resolution DEM drains (orom_himalaya-
-// everest at level 3: a third of the synthesis's pits were copied from such basins and kept, and
-// the finer levels re-detailed them as valleys under 300-1000 m of fill).
-std::vector<float> closedDepths(const ExemplarDatabase& db, int level, const std::vector<float>& level0);
-
-// breachDepthMargin and closedDepths per level, computed on first use (a synthesizer owns one; not
-// thread-safe).
-class DrainageLevels {
+// breachDepthMargin per level, computed on first use (a synthesizer owns one; not thread-safe).
+class DepthMargins {
 public:
-    float depthMargin(const ExemplarDatabase& db, int level);
-    const std::vector<float>& closedDepth(const ExemplarDatabase& db, int level);
+    float at(const ExemplarDatabase& db, int level);
 
 private:
-    void fit(const ExemplarDatabase& db);
     std::vector<float> margins_;
-    std::vector<uint8_t> margin_known_;
-    std::vector<std::vector<float>> closed_depths_;
-    std::vector<uint8_t> closed_known_;
+    std::vector<uint8_t> known_;
 };
 
 struct DrainageInputs {
@@ -75,7 +50,6 @@ struct DrainageInputs {
     const PassHistory* drained = nullptr;             // previous synthesis after breaching; may be empty
     const std::vector<float>* blend = nullptr;        // constraint sums, 4 per region pixel; may be empty
     float depth_margin = 0.0f;                         // breachDepthMargin of the level, metres
-    const std::vector<float>* closed_depth = nullptr;  // closedDepths of the level; null: all zero
     // The pixels whose result matters (global, at the level): what the next finer level or the
     // output reads. Only pits within `radius` of it can carve it, so the others are not searched.
     // Empty: the whole region.
@@ -84,8 +58,7 @@ struct DrainageInputs {
 
 struct BreachCounts {
     size_t pits = 0;      // pits found in the region
-    size_t breached = 0;  // of them, drained (or made as shallow as their source) by a carved path
-    size_t kept = 0;      // of them, no deeper than the exemplar basin they were copied from
+    size_t breached = 0;  // of them, drained by a carved path
 };
 
 // Breaches the region's pits (see above), lowering V along carved paths and setting every pixel's

@@ -11,7 +11,7 @@ namespace {
 
 class ReferenceSteps final : public SynthesisSteps {
 public:
-    ReferenceSteps(const ExemplarDatabase& db, DrainageLevels& drainage) : db_(db), drainage_(drainage) {}
+    ReferenceSteps(const ExemplarDatabase& db, DepthMargins& margins) : db_(db), margins_(margins) {}
     Status init(int level, const LevelRegion& region, uint32_t seed) override {
         referenceInit(db_.levels[level], region, seed, level, current_);
         return Status::ok();
@@ -56,8 +56,7 @@ public:
         referencePreviewLevel(db_.levels[level], region, coherence, previous, current_);
         return Status::ok();
     }
-    float depthMargin(int level) override { return drainage_.depthMargin(db_, level); }
-    const std::vector<float>& closedDepth(int level) override { return drainage_.closedDepth(db_, level); }
+    float depthMargin(int level) override { return margins_.at(db_, level); }
     Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) override {
         breachPits(db_.levels[level], region, radius, inputs, current_);
         return Status::ok();
@@ -72,7 +71,7 @@ public:
 
 private:
     const ExemplarDatabase& db_;
-    DrainageLevels& drainage_;
+    DepthMargins& margins_;
     std::vector<PixelState> current_;
     CorrectionContext context_;
 };
@@ -82,7 +81,7 @@ public:
     explicit ReferenceSynthesizer(std::shared_ptr<const ExemplarDatabase> db) : Synthesizer(std::move(db)) {}
     Result<SynthesisOutput> synthesize(const PixelWindow& window, const SynthesisParams& params, int output_level,
                                        bool want_sources) override {
-        ReferenceSteps steps(*db_, drainage_);
+        ReferenceSteps steps(*db_, margins_);
         size_t peak = 0;
         auto out = runSynthesis(*db_, window, params, output_level, want_sources, steps, &peak);
         if (out) bytes_per_pixel_ = static_cast<double>(peak * sizeof(PixelState)) / (window.width * window.height) +
@@ -94,7 +93,7 @@ public:
 
 private:
     double bytes_per_pixel_ = 0.0;
-    DrainageLevels drainage_;
+    DepthMargins margins_;
 };
 
 }  // namespace

@@ -47,9 +47,8 @@ public:
     virtual Status correct(int level, const LevelRegion& region, int parity_x, int parity_y, int inset) = 0;
     // Drainage (drainage_breach.h): breaches the level's pits after its correction passes.
     virtual Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) = 0;
-    // breachDepthMargin and closedDepths of a level, cached by the backend.
+    // breachDepthMargin of a level, cached by the backend.
     virtual float depthMargin(int level) = 0;
-    virtual const std::vector<float>& closedDepth(int level) = 0;
     virtual Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
                            bool want_sources) = 0;
 };
