@@ -7,9 +7,9 @@
 //
 // CI size: 512^2, one seed, the exemplars that showed the collapse of issue 16 (wn_mackay,
 // wn_big_butte: valley floors or plain around relief, 30 m), the smoothest and a rough default
-// exemplar (orom_appalachians, orom_rockies) and a 30 m fluvial one (ttb_bigtujunga). Every
-// shared exemplar at 1024^2 and three seeds, with the steering instrument, is
-// scripts/realism_survey.py (docs/realism.md has its figures).
+// exemplar (orom_appalachians, orom_rockies) and a 30 m fluvial one (ttb_bigtujunga); drainage on
+// all 14 fluvial exemplars. Every shared exemplar at 1024^2 and several seeds, with the steering
+// instrument, is scripts/realism_survey.py (docs/realism.md has its figures).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,6 +30,11 @@ constexpr int kSize = 512;
 constexpr uint32_t kSeed = 3;
 
 const char* const kExemplars[] = {"wn_mackay", "wn_big_butte", "orom_appalachians", "orom_rockies", "ttb_bigtujunga"};
+// Issue 17's exemplars: every shared one but the dune fields and karst, whose closed depressions are real.
+const char* const kFluvial[] = {"glac_mtperdu_20m", "glac_sthelens_10m", "orom_alaska", "orom_andes-chile",
+                                "orom_appalachians", "orom_highlands", "orom_himalaya-everest", "orom_karakoram",
+                                "orom_norway", "orom_rockies", "osge_mt_fuji_90m", "ttb_bigtujunga",
+                                "wn_big_butte", "wn_mackay"};
 
 // One-exemplar database, cached in the build tree (rebuilt when the exemplar or options change).
 std::shared_ptr<const ExemplarDatabase> database(const std::string& stem) {
@@ -118,21 +123,28 @@ TEST(ExemplarRealism, EveryExemplarAloneDrawsFromAllOfIt) {
 }
 
 TEST(ExemplarRealism, BreachingLeavesFewerClosedDepressions) {
-    // Issue 17: with drainage (Drainage::Breach, off by default) the synthesis holds fewer closed
-    // depressions than the same synthesis without it, and its drainage area stays within the
-    // exemplar's own spread.
-    // Per exemplar the reduction ranges from 7% (orom_rockies) to 86% (wn_mackay) at this size, so
-    // each must not get worse and together they must lose at least a quarter of their distance.
+    // Issue 17, on every fluvial shared exemplar (512^2, seed 3): with drainage (Drainage::Breach,
+    // off by default) the drainage area stays within the exemplar's own spread, and the share of
+    // pixels in closed depressions either does too or is at most half as far from the exemplar's as
+    // without drainage (measured: within the spread for 8 of 14; orom_appalachians, highlands,
+    // himalaya-everest, karakoram, norway and wn_mackay lose 58-84% of their distance). Together
+    // the 14 lose at least half of it (measured: 66%). glac_mtperdu_20m and orom_andes-chile, whose
+    // depressions are within the spread either way, come out 0.2 and 0.5 points further than off.
+    // The steering instrument's figures at 1024^2 and six seeds are in docs/realism.md.
     double total_on = 0.0, total_off = 0.0;
-    for (const char* stem : kExemplars) {
+    for (const char* stem : kFluvial) {
         const Judged& on = judged(stem, Drainage::Breach);
         const Judged& off = judged(stem, Drainage::Off);
-        EXPECT_LE(on.distance[Metric::DepressionShare].value, off.distance[Metric::DepressionShare].value) << stem;
+        const double on_distance = on.distance[Metric::DepressionShare].value;
+        const double off_distance = off.distance[Metric::DepressionShare].value;
+        EXPECT_TRUE(on.ratio(Metric::DepressionShare) <= 1.0 || on_distance <= 0.5 * off_distance)
+            << stem << ": depressions " << on_distance << " from the exemplar's share with breach, " << off_distance
+            << " without; spread ratio " << on.ratio(Metric::DepressionShare);
         EXPECT_LE(on.ratio(Metric::DrainageArea), 1.0) << stem;
-        total_on += on.distance[Metric::DepressionShare].value;
-        total_off += off.distance[Metric::DepressionShare].value;
+        total_on += on_distance;
+        total_off += off_distance;
     }
-    EXPECT_LT(total_on, 0.75 * total_off);
+    EXPECT_LT(total_on, 0.5 * total_off);
 }
 
 TEST(ExemplarRealism, NoExemplarPixelIsStretchedOverItsNeighbours) {
