@@ -50,7 +50,9 @@ public:
 
     // Region pixels of the cheapest path from the pit at (x, y) to a strictly lower pixel, pit first;
     // empty when there is none within the radius.
-    std::vector<int> find(const std::vector<float>& z, const std::vector<uint8_t>& fixed, int w, int h, int x, int y, float margin) {
+    // to_edge: when there is none, the path to the cheapest reached cell on the window's edge.
+    std::vector<int> find(const std::vector<float>& z, const std::vector<uint8_t>& fixed, int w, int h, int x, int y,
+                          float margin, bool to_edge) {
         int fallback = -1;
         std::fill(cost_.begin(), cost_.end(), INFINITY);
         std::fill(done_.begin(), done_.end(), 0);
@@ -87,11 +89,26 @@ public:
                     }
                 }
         }
-        return fallback >= 0 ? trace(fallback, w, x, y) : std::vector<int>();
+        if (fallback >= 0) return trace(fallback, w, x, y);
+        return to_edge ? trace(cheapestEdgeCell(fixed, w, x, y), w, x, y) : std::vector<int>();
     }
 
 private:
+    // The reached, unprotected cell on the window's edge with the lowest path cost (ties: the lower
+    // cell index); -1 when none was reached.
+    int cheapestEdgeCell(const std::vector<uint8_t>& fixed, int w, int x, int y) const {
+        int best = -1;
+        for (int c = 0; c < cells_; ++c) {
+            const int cx = c % side_, cy = c / side_;
+            if (!done_[c] || (cx != 0 && cy != 0 && cx != side_ - 1 && cy != side_ - 1)) continue;
+            if (fixed[(y + cy - radius_) * w + (x + cx - radius_)]) continue;  // never lowered
+            if (best < 0 || cost_[c] < cost_[best]) best = c;
+        }
+        return best;
+    }
+
     std::vector<int> trace(int cell, int w, int x, int y) const {
+        if (cell < 0) return {};
         std::vector<int> path;
         for (; cell >= 0; cell = parent_[cell]) path.push_back((y + cell / side_ - radius_) * w + (x + cell % side_ - radius_));
         std::reverse(path.begin(), path.end());
@@ -178,11 +195,13 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
                 if (!isPit(z, w, y * w + x)) continue;
                 ++out.counts.pits;
                 if (copiedFromClosedDepression(db, state[y * w + x])) continue;  // a real basin: keep it
-                const std::vector<int> path = search.find(z, fixed, w, h, x, y, inputs.depth_margin);
+                const std::vector<int> path = search.find(z, fixed, w, h, x, y, inputs.depth_margin, inputs.carve_to_edge);
                 if (path.empty()) continue;
                 ++out.counts.breached;
-                // A straight profile from the pit down to the lower pixel; cells already below it stay.
-                const float top = z[path.front()], bottom = z[path.back()];
+                // A straight profile from the pit down to the lower pixel; cells already below it
+                // stay. A path to the window's edge (carve_to_edge) ends below the pit.
+                const float top = z[path.front()];
+                const float bottom = z[path.back()] < top ? z[path.back()] : top - std::max(inputs.depth_margin, kEdgeDrop);
                 const float k = static_cast<float>(path.size() - 1);
                 for (size_t i = 0; i < path.size(); ++i) {
                     const float line = top - (top - bottom) * (static_cast<float>(i) / k);

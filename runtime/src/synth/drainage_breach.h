@@ -5,7 +5,8 @@
 // placed side by side dam each other's valleys. Every pit of the level (a pixel lower than its 8
 // neighbours in (height, global row, global column) order, so flat-bottomed pits count once) looks
 // for the cheapest path, within `radius` pixels (Chebyshev) of it, to a pixel at least
-// `depth_margin` lower than itself (else to the first strictly lower one it met); cost = metres
+// `depth_margin` lower than itself (else to the first strictly lower one it met, else, at coarse
+// levels, to the cheapest pixel on the window's edge: DrainageInputs::carve_to_edge); cost = metres
 // above the pit summed along the path (plus a millimetre per pixel, so the shorter of equal paths
 // wins). The path is carved to a straight profile from the pit down to that
 // pixel by lowering V. Paths are searched on the heights before any carving and combined by taking
@@ -45,11 +46,23 @@ private:
     std::vector<uint8_t> known_;
 };
 
+// How far below the pit a path to the window's edge ends at least (DrainageInputs::carve_to_edge), metres.
+constexpr float kEdgeDrop = 1.0f;
+// The finest level whose breach carves to the window's edge: the regional lows form at the coarse
+// levels; levels 2-4 is what was measured (docs/realism.md, "Carving to the window's edge").
+constexpr int kBreachToEdgeFromLevel = 2;
+
 struct DrainageInputs {
     const std::vector<uint8_t>* coherence = nullptr;  // W codes per region pixel; empty: none frozen
     const PassHistory* drained = nullptr;             // previous synthesis after breaching; may be empty
     const std::vector<float>* blend = nullptr;        // constraint sums, 4 per region pixel; may be empty
     float depth_margin = 0.0f;                         // breachDepthMargin of the level, metres
+    // A pit with no lower pixel within the radius is carved to the cheapest pixel on its search
+    // window's edge, which is lowered below the pit (by depth_margin, at least kEdgeDrop), so the
+    // channel leads out of the basin and the next level's breach may continue it. Such pits are the
+    // regional lows of the initial patches (valleys ending against higher patches) and the large
+    // basins left at 1024^2; synthesis_driver.cpp sets it from level kBreachToEdgeFromLevel up.
+    bool carve_to_edge = false;
     // The pixels whose result matters (global, at the level): what the next finer level or the
     // output reads. Only pits within `radius` of it can carve it, so the others are not searched.
     // Empty: the whole region.

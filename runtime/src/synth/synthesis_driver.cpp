@@ -184,7 +184,8 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         // Issue 17: breach the level's pits; frozen pixels take the previous synthesis's drained state.
         const PassHistory drained = previousPass(params.previous.get(), level, passes, region);
         Status s = steps.drain(level, region, breachRadius(level),
-                               {&coherence, &drained, &constraints.blend, steps.depthMargin(level), plan.needed[level]});
+                               {&coherence, &drained, &constraints.blend, steps.depthMargin(level),
+                                level >= kBreachToEdgeFromLevel, plan.needed[level]});
         if (!s) return s;
         return history ? steps.recordPass(level, region, history->levels[level].passes.back()) : Status::ok();
     };
