@@ -72,13 +72,15 @@ constexpr int kInitialStrata = 3;
 // cheapest path to a lower pixel within breachRadius(level) pixels and the path is carved to a
 // straight descending profile (least-cost breaching, Lindsay 2016), by lowering V; the carved
 // heights become a ceiling the next level's correction may not exceed (the channel is re-detailed
-// from the exemplars below it). Bounded reach: a pixel depends on heights within
-// 2 * breachRadius(level) + 1 pixels, which the window plan adds to that level's margin, so windows
-// stay bit-identical to larger windows. Frozen pixels and pixels under point or curve constraints
-// are never carved (a path may end at a lower one). Cost: the search runs on the host and the
-// coarse levels' regions grow by the reach, about +100% synthesis time at 1024^2, which is why Off
-// is the default (docs/realism.md, "Drainage"). Off: no drainage step; the synthesis is exactly what
-// it is without this feature (the issue 16 start of synthesis applies to both).
+// from the exemplars below it). At levels 2-4 a pit with no lower pixel within the radius (a
+// regional low) is carved to the cheapest pixel on the edge of its search window instead, which
+// ends below it. Bounded reach: a pixel depends on heights within 2 * breachRadius(level) + 1
+// pixels, which the window plan adds to that level's margin, so windows stay bit-identical to
+// larger windows. Frozen pixels and pixels under point or curve constraints are never carved (a
+// path may end at a lower one). Cost: the search runs on the host and the coarse levels' regions
+// grow by the reach, +50-100% synthesis time at 1024^2, which is why Off is the default
+// (docs/realism.md, "Drainage"). Off: no drainage step; the synthesis is exactly what it is
+// without this feature (the issue 16 start of synthesis applies to both).
 enum class Drainage : uint8_t { Off = 0, Breach = 1 };
 // Search radius of the breach at `level`, in pixels of that level (docs/realism.md, "Drainage").
 int breachRadius(int level);
