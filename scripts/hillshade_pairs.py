@@ -35,7 +35,8 @@ def hillshade(z, mpp):
 
 def raised_cells(z):
     """Cells the realism instrument's Priority-Flood+epsilon raises (its fill_pct)."""
-    sys.path.insert(0, os.path.join(SHARED, 'realism'))
+    if os.path.join(SHARED, 'realism') not in sys.path:  # once, not per panel
+        sys.path.insert(0, os.path.join(SHARED, 'realism'))
     import realism
     return realism.priority_flood_eps(z.astype(np.float64)) > z
 

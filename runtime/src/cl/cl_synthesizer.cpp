@@ -127,14 +127,8 @@ private:
             // (synth::kNoIdentityCandidate), and C_2(c) from PatchMatch.
             std::vector<cl_uint2> candidate_table(l.pixelCount());
             for (size_t c = 0; c < candidate_table.size(); ++c) {
-                candidate_table[c].s[0] = static_cast<cl_uint>(c);
+                candidate_table[c].s[0] = synth::identityCandidate(l, static_cast<uint32_t>(c));
                 candidate_table[c].s[1] = l.similar[c];
-                if (l.exemplar[c] == kNoExemplar) continue;
-                const AtlasRect& r = l.rects[l.exemplar[c]];
-                const int x = static_cast<int>(c % l.width), y = static_cast<int>(c / l.width);
-                if (x < r.x + kInteriorMargin || x > r.x + r.width - 1 - kInteriorMargin || y < r.y + kInteriorMargin ||
-                    y > r.y + r.height - 1 - kInteriorMargin)
-                    candidate_table[c].s[0] = synth::kNoIdentityCandidate;
             }
             auto similar = upload(candidate_table.data(), candidate_table.size() * sizeof(cl_uint2));
             auto exemplar = upload(l.exemplar.data(), l.exemplar.size());

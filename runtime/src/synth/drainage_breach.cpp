@@ -27,12 +27,7 @@ std::vector<uint8_t> protectedPixels(const DatabaseLevel& db, const DrainageInpu
     for (size_t i = 0; i < state.size(); ++i) {
         if (coherence && (*in.coherence)[i] == static_cast<uint8_t>(Coherence::Frozen)) {
             fixed[i] = 1;
-            if (drained && in.drained->index[i] != kNoPrevious) {
-                const uint32_t q = in.drained->index[i];
-                state[i].x = static_cast<float>(q % static_cast<uint32_t>(db.width));
-                state[i].y = static_cast<float>(q / static_cast<uint32_t>(db.width));
-                state[i].v = in.drained->v[i];
-            }
+            if (drained && in.drained->index[i] != kNoPrevious) takePrevious(db, *in.drained, i, state[i]);
         }
         if (blend && (*in.blend)[4 * i] > 0.0f) fixed[i] = 1;
     }

@@ -64,17 +64,25 @@ float heightBilinear(const DatabaseLevel& db, float sx, float sy) {
     return lerp(top, bot, ty);
 }
 
-namespace {
+uint32_t identityCandidate(const DatabaseLevel& db, uint32_t c) {
+    if (db.exemplar[c] == kNoExemplar) return c;
+    const AtlasRect& r = db.rects[db.exemplar[c]];
+    const int x = static_cast<int>(c % static_cast<uint32_t>(db.width)), y = static_cast<int>(c / static_cast<uint32_t>(db.width));
+    const bool interior = x >= r.x + kInteriorMargin && x <= r.x + r.width - 1 - kInteriorMargin &&
+                          y >= r.y + kInteriorMargin && y <= r.y + r.height - 1 - kInteriorMargin;
+    return interior ? c : kNoIdentityCandidate;
+}
 
-int floorDiv(int v, int d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
-
-// A frozen (or kept) pixel takes its previous result: coordinate and offset V, ceiling unchanged.
 void takePrevious(const DatabaseLevel& db, const PassHistory& previous, size_t pixel, PixelState& out) {
     const uint32_t q = previous.index[pixel];
     out.x = static_cast<float>(q % static_cast<uint32_t>(db.width));
     out.y = static_cast<float>(q / static_cast<uint32_t>(db.width));
     out.v = previous.v[pixel];
 }
+
+namespace {
+
+int floorDiv(int v, int d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
 
 int wrapInto(int v, int n) {
     const int m = v % n;
@@ -288,10 +296,9 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                     const int cx = static_cast<int>(std::floor(s.x - static_cast<float>(ddx) + 0.5f));
                     const int cy = static_cast<int>(std::floor(s.y - static_cast<float>(ddy) + 0.5f));
                     const int c = cy * db.width + cx;
-                    const AtlasRect& r = db.rects[db.exemplar[c]];
-                    const bool interior = cx >= r.x + kInteriorMargin && cx <= r.x + r.width - 1 - kInteriorMargin &&
-                                          cy >= r.y + kInteriorMargin && cy <= r.y + r.height - 1 - kInteriorMargin;
-                    const int candidates[2] = {interior ? c : -1, static_cast<int>(db.similar[c])};  // kNoIdentityCandidate
+                    // kNoIdentityCandidate reads as -1.
+                    const int candidates[2] = {static_cast<int>(identityCandidate(db, static_cast<uint32_t>(c))),
+                                               static_cast<int>(db.similar[c])};
                     for (int j = 0; j < 2; ++j) {
                         const int q = candidates[j];
                         if (q < 0) continue;

@@ -12,9 +12,6 @@
 
 namespace terrasynth::synth {
 
-// Per synthesis pixel: exemplar atlas coordinate S (x, y), height offset V, and the drainage ceiling
-// (issue 17, synth/drainage_breach.h): the height a channel carved at the coarser level must not
-// rise above; +infinity where there is none.
 // C_1 of a candidate source outside its exemplar's interior: none. Moving it to the nearest
 // interior pixel (as before) repeated the interior's edge row or column wherever a coherent patch
 // ran into it, a fixed point of the passes that showed as stripes on exemplars barely taller than a
@@ -22,9 +19,21 @@ namespace terrasynth::synth {
 // candidate or C_2, a seam the passes repair.
 constexpr uint32_t kNoIdentityCandidate = 0xffffffffu;
 
+// C_1(c) (s4, Lefebvre & Hoppe 2005's identity candidate) of atlas pixel c: c itself when it lies
+// in its exemplar's interior (or in no exemplar), else kNoIdentityCandidate. The OpenCL backend
+// bakes it into its candidate table; the reference calls it per candidate.
+uint32_t identityCandidate(const DatabaseLevel& db, uint32_t c);
+
+// Per synthesis pixel: exemplar atlas coordinate S (x, y), height offset V, and the drainage ceiling
+// (issue 17, synth/drainage_breach.h): the height a channel carved at the coarser level must not
+// rise above; +infinity where there is none.
 struct PixelState {
     float x = 0, y = 0, v = 0, ceiling = 0;
 };
+
+// A frozen (or kept) pixel takes its previous result `previous` at region pixel `pixel`:
+// coordinate and offset V; its ceiling is unchanged.
+void takePrevious(const DatabaseLevel& db, const PassHistory& previous, size_t pixel, PixelState& out);
 
 // The point of [0, total) that picks the exemplar of initial cell (cell_x, cell_y), the kernel's
 // stratified_pick: the kInitialStrata^2 cells of a block take one stratum of [0, total) each, in a
