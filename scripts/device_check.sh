@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# The OpenCL tests and synth_bench on a lent GPU machine (the workplace's `device` tool), in one call.
+#
+# That machine has no package registry and another distribution, so the binaries are built here and
+# carried with the shared libraries they need (scripts/device_pack.sh fills .device/, which git
+# ignores), and the GPU's own OpenCL driver is registered with the carried ICD loader.
+#   here:   bash scripts/device_pack.sh
+#   there:  bash scripts/device_check.sh      (carry .device; results under $OUT)
+# Logs and the GPU's synthesis of the default project come back under $OUT for comparison with the
+# CPU (PoCL) run here.
+set -u
+OUT=${OUT:-/tmp/device_out}
+mkdir -p "$OUT"
+root=$PWD
+pack=$root/.device
+
+main() {
+
+echo "== machine"
+nvidia-smi -L 2>&1 | head -3
+nproc
+
+echo "== OpenCL driver"
+# NVIDIA ships its OpenCL implementation as libnvidia-opencl.so.1; the carried ICD loader finds it
+# through a vendors folder of our own.
+driver=$(find /usr/local/nvidia /usr/lib /usr/lib64 /usr/lib/x86_64-linux-gnu -name 'libnvidia-opencl.so.1' 2>/dev/null | head -1)
+[ -n "$driver" ] || driver=$(find / -xdev -name 'libnvidia-opencl.so*' 2>/dev/null | head -1)
+echo "driver: ${driver:-none found}"
+ls /etc/OpenCL/vendors 2>/dev/null
+if [ -n "$driver" ]; then
+  mkdir -p /tmp/ocl_vendors && echo "$driver" >/tmp/ocl_vendors/nvidia.icd
+  export OCL_ICD_VENDORS=/tmp/ocl_vendors
+fi
+export LD_LIBRARY_PATH=$pack/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+ldconfig -p | grep -q 'libz.so.1 ' || export LD_LIBRARY_PATH=$LD_LIBRARY_PATH:$pack/libz
+
+# The binaries carry this checkout's paths (/work/main/...); point them here.
+if [ ! -e /work/main/data/exemplars ]; then mkdir -p /work && ln -sfn "$root" /work/main; fi
+mkdir -p /work/main/build/pocl_cache /work/main/build/test_tmp
+export TERRASYNTH_DATA_DIR=$root/data TERRASYNTH_BIN_DIR=$pack/bin TERRASYNTH_TEST_TMP=/work/main/build/test_tmp
+export POCL_CACHE_DIR=/work/main/build/pocl_cache
+
+echo "== devices seen by terrasynth"
+# A device name that matches none makes the runtime list every device it can see.
+TERRASYNTH_OPENCL_DEVICE='(list)' "$pack/bin/terrasynth" synth "$root/data/default.tsyn" --size 64x64 -o /tmp/list.png 2>&1 |
+  grep -o 'available:.*'
+
+echo "== OpenCL tests"
+# At most 8 files come back from $OUT: the per-test logs travel as one archive.
+tests_dir=/tmp/device_tests
+mkdir -p "$tests_dir"
+run_test() {
+  local name=$1
+  timeout 240 "$pack/tests/$name" --gtest_color=no --gtest_output="xml:$tests_dir/$name.xml" >"$tests_dir/$name.log" 2>&1
+  local rc=$?
+  echo "$name: exit $rc, $(grep -c '^\[       OK' "$tests_dir/$name.log") ok, $(grep -c '^\[  FAILED  \].*(' "$tests_dir/$name.log") failed"
+  grep -E '^\[  FAILED  \]|worst|differing|Failure' "$tests_dir/$name.log" | head -8
+  echo $rc >"$tests_dir/$name.rc"
+}
+[ -n "${DEVICE_CHECK_SKIP_TESTS:-}" ] || run_test cl_synthesis_test  # builds the default database that the others load
+[ -n "${DEVICE_CHECK_SKIP_TESTS:-}" ] ||
+for t in cl_coherence_test cl_hardening_test cl_incremental_test project_session_test project_constraints_test; do
+  run_test $t &
+done
+wait
+tar -C /tmp -czf "$OUT/tests.tar.gz" device_tests
+
+echo "== synth_bench"
+timeout 240 "$pack/bin/synth_bench" --benchmark_filter='OpenCL|LiftPoints' --benchmark_repetitions=5 \
+  --benchmark_report_aggregates_only=true --benchmark_out="$OUT/synth_bench.json" --benchmark_out_format=json 2>&1 |
+  grep -E 'median|Run on|CPU|Mpixel' | grep -v -E 'mean|stddev|cv'
+
+echo "== work-group shapes, 1024^2"
+for shape in 32,2 16,16 64,4 128,1; do
+  printf '%s: ' "$shape"
+  TERRASYNTH_CL_LOCAL_SIZE=$shape timeout 60 "$pack/bin/synth_bench" --benchmark_filter='BM_SynthesizeOpenCL/1024' \
+    --benchmark_repetitions=5 --benchmark_report_aggregates_only=true 2>&1 | grep median | awk '{print $2, $3}'
+done
+
+echo "== default project, 1024^2, for comparison with PoCL"
+( cd "$root/data" && "$pack/bin/terrasynth" synth default.tsyn -o "$OUT/gpu_default.png" --seed 3 &&
+  "$pack/bin/terrasynth" synth default.tsyn -o "$OUT/gpu_default_breach.png" --seed 3 --drainage breach ) 2>&1 | tail -4
+echo "== done; test binaries that failed: $(grep -L -x 0 "$tests_dir"/*.rc 2>/dev/null | xargs -r -n1 basename | tr '\n' ' ')"
+}
+
+main 2>&1 | tee "$OUT/device_check.log"

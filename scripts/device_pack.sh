@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Fills .device/ (ignored by git) with what scripts/device_check.sh runs on a lent GPU machine:
+# the built OpenCL tests, synth_bench and the CLI, and the non-system shared libraries they load
+# (that machine runs another distribution and has no package registry).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${BUILD_DIR:-build}
+cmake --build "$build" -j2 --target synth_bench terrasynth_cli cl_synthesis_test cl_coherence_test \
+  cl_hardening_test cl_incremental_test project_session_test project_constraints_test >/dev/null
+rm -rf .device && mkdir -p .device/bin .device/tests .device/lib .device/libz
+cp "$build"/bin/synth_bench "$build"/bin/terrasynth .device/bin/
+for t in cl_synthesis_test cl_coherence_test cl_hardening_test cl_incremental_test project_session_test \
+         project_constraints_test; do cp "$build/tests/$t" .device/tests/; done
+# Every shared library outside glibc and the compiler runtime; zlib apart, used only where missing.
+ldd .device/bin/* .device/tests/* | awk '/=> \//{print $3}' | sort -u |
+  grep -v -E '/(libc|libm|libgcc_s|libstdc\+\+|ld-linux[^/]*)\.so' | while read -r lib; do
+    case $lib in */libz.so.*) cp -L "$lib" .device/libz/ ;; *) cp -L "$lib" .device/lib/ ;; esac
+  done
+grep -qx '/.device/' .git/info/exclude 2>/dev/null || echo '/.device/' >>.git/info/exclude
+du -sh .device
