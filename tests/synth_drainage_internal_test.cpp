@@ -1,6 +1,9 @@
 // Issue 17: a pit with no lower pixel within the breach radius (a regional low of the coarse
 // levels) is carved to the cheapest pixel on its search window's edge, which ends below the pit
 // (DrainageInputs::carve_to_edge), and a protected pixel is never lowered (drainage_breach.h).
+// A path goes to a pixel depth_margin below the pit when one is within reach, else to the first
+// lower pixel the search meets (the search stops there early when the window's minimum says the
+// margin is out of reach).
 // The synthesis is a cone of height offsets V over a level exemplar, so its apex-down centre is the
 // lowest pixel of the whole region.
 #include <gtest/gtest.h>
@@ -95,6 +98,50 @@ TEST(Drainage, AProtectedPixelOnTheEdgeIsNeverLowered) {
     const std::vector<PixelState> before = state;
     breach(state, true, &blend);
     for (size_t i = 0; i < state.size(); ++i) ASSERT_EQ(state[i].v, before[i].v) << "pixel " << i;
+}
+
+// A plain at 10 m near the region's north edge (so the search windows are clipped by it), with a pit
+// at 0 m, a shallow hollow 4 pixels east (-0.5 m) and, optionally, a deep one 7 pixels west (-5 m).
+constexpr int kRow = 3, kPit = 20, kShallow = 24, kDeep = 13;
+std::vector<PixelState> plainWithHollows(bool deep) {
+    std::vector<PixelState> state(static_cast<size_t>(kSide) * kSide);
+    for (PixelState& s : state) s.x = s.y = 8.0f, s.v = 10.0f;
+    auto at = [&](int x) -> float& { return state[static_cast<size_t>(kRow) * kSide + x].v; };
+    at(kPit) = 0.0f;
+    at(kShallow) = -0.5f;
+    if (deep) at(kDeep) = -5.0f;
+    return state;
+}
+
+std::vector<float> rowAfterBreach(bool deep, float depth_margin) {
+    std::vector<PixelState> state = plainWithHollows(deep);
+    const DatabaseLevel db = levelExemplar();
+    DrainageInputs in;
+    in.depth_margin = depth_margin;
+    breachPits(db, {0, 0, kSide, kSide}, kRadius, in, state);
+    std::vector<float> row(kSide);
+    for (int x = 0; x < kSide; ++x) row[x] = state[static_cast<size_t>(kRow) * kSide + x].v;
+    return row;
+}
+
+TEST(Drainage, APitDrainsToAPixelTheDepthMarginBelowWhenOneIsInReach) {
+    const std::vector<float> row = rowAfterBreach(true, 2.0f);
+    // The shallow hollow is nearer and cheaper, but only the deep one is 2 m below the pit.
+    for (int x = kDeep + 1; x < kPit; ++x)
+        EXPECT_NEAR(row[x], -5.0f * static_cast<float>(kPit - x) / (kPit - kDeep), 1e-5f) << x;
+    for (int x = kPit + 1; x < kShallow; ++x) EXPECT_EQ(row[x], 10.0f) << x;
+}
+
+TEST(Drainage, APitOutOfReachOfTheMarginDrainsToTheFirstLowerPixel) {
+    for (float margin : {2.0f, 0.0f}) {
+        // Without the deep hollow the margin is out of reach (the search stops at the first lower
+        // pixel); with margin 0 the first lower pixel is the target anyway.
+        const std::vector<float> row = rowAfterBreach(margin == 0.0f, margin);
+        for (int x = kPit + 1; x < kShallow; ++x)
+            EXPECT_NEAR(row[x], -0.5f * static_cast<float>(x - kPit) / (kShallow - kPit), 1e-5f) << "margin " << margin << ", " << x;
+        for (int x = kDeep + 1; x < kPit; ++x) EXPECT_EQ(row[x], 10.0f) << "margin " << margin << ", " << x;
+        EXPECT_EQ(row[kShallow], -0.5f) << "the hollow has nothing lower within reach and stays";
+    }
 }
 
 }  // namespace

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 #include <thread>
 
 namespace terrasynth {
@@ -17,6 +16,9 @@ int breachRadius(int level) {
 
 namespace terrasynth::synth {
 namespace {
+
+// Breach workers at most: the pits of a level are few and their searches short (docs/realism.md).
+constexpr int kMaxBreachThreads = 8;
 
 // Frozen pixels take the recorded post-breach state; frozen and constrained pixels are never carved.
 std::vector<uint8_t> protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, std::vector<PixelState>& state) {
@@ -43,30 +45,38 @@ public:
         done_.resize(cells_);
     }
 
-    // Region pixels of the cheapest path from the pit at (x, y) to a strictly lower pixel, pit first;
-    // empty when there is none within the radius.
-    // to_edge: when there is none, the path to the cheapest reached cell on the window's edge.
+    // Region pixels of the cheapest path from the pit at (x, y) to a pixel `margin` lower, pit first;
+    // else to the first strictly lower pixel the search met; else (to_edge) to the cheapest reached
+    // cell on the window's edge; else empty.
+    // window_min: the lowest height of the region within the radius of the pit. It changes no
+    // result, only the work: when no pixel is `margin` lower, the whole window would be searched in
+    // vain and the answer is the first lower pixel met, so the search stops there (at coarse levels
+    // most searches are such, and they were most of the breach's time).
     std::vector<int> find(const std::vector<float>& z, const std::vector<uint8_t>& fixed, int w, int h, int x, int y,
-                          float margin, bool to_edge) {
+                          float margin, bool to_edge, float window_min) {
+        const float bottom = z[y * w + x];
+        const bool margin_reachable = window_min < bottom - margin;
+        if (!to_edge && !(window_min < bottom)) return {};
         int fallback = -1;
         std::fill(cost_.begin(), cost_.end(), INFINITY);
         std::fill(done_.begin(), done_.end(), 0);
-        using Entry = std::pair<float, int>;  // (cost, window cell); ties go to the lower cell index
-        std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+        open_.clear();
         const int centre = radius_ * side_ + radius_;
-        const float bottom = z[y * w + x];
         cost_[centre] = 0.0f;
         parent_[centre] = -1;
-        open.push({0.0f, centre});
-        while (!open.empty()) {
-            const auto [d, cell] = open.top();
-            open.pop();
+        push({0.0f, centre});
+        while (!open_.empty()) {
+            const auto [d, cell] = pop();
             if (done_[cell]) continue;
             done_[cell] = 1;
             const int cx = cell % side_, cy = cell / side_;
             const int gx = x + cx - radius_, gy = y + cy - radius_;
             if (z[gy * w + gx] < bottom - margin) return trace(cell, w, x, y);
-            if (fallback < 0 && z[gy * w + gx] < bottom) fallback = cell;
+            if (fallback < 0 && z[gy * w + gx] < bottom) {
+                fallback = cell;
+                // Popped cells are final, so this is the path an exhausted search would return.
+                if (!margin_reachable) return trace(fallback, w, x, y);
+            }
             if (cell != centre && fixed[gy * w + gx]) continue;  // may end a path, never carry one
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
@@ -80,7 +90,7 @@ public:
                     if (d + step < cost_[n]) {
                         cost_[n] = d + step;
                         parent_[n] = cell;
-                        open.push({cost_[n], n});
+                        push({cost_[n], n});
                     }
                 }
         }
@@ -89,6 +99,20 @@ public:
     }
 
 private:
+    // A binary min-heap on (cost, window cell), kept between searches. A cell is pushed again only
+    // with a lower cost, so no two entries are equal and the pop order is that of any heap.
+    using Entry = std::pair<float, int>;
+    void push(Entry e) {
+        open_.push_back(e);
+        std::push_heap(open_.begin(), open_.end(), std::greater<Entry>());
+    }
+    Entry pop() {
+        std::pop_heap(open_.begin(), open_.end(), std::greater<Entry>());
+        const Entry e = open_.back();
+        open_.pop_back();
+        return e;
+    }
+
     // The reached, unprotected cell on the window's edge with the lowest path cost (ties: the lower
     // cell index); -1 when none was reached.
     int cheapestEdgeCell(const std::vector<uint8_t>& fixed, int w, int x, int y) const {
@@ -114,7 +138,41 @@ private:
     std::vector<float> cost_;
     std::vector<int> parent_;
     std::vector<uint8_t> done_;
+    std::vector<Entry> open_;
 };
+
+// Minimum of each run of 2r+1 values of a row centred on each element, clamped to the row (van
+// Herk / Gil-Werman: per block of 2r+1, prefix and suffix minima; three comparisons per element).
+void rowMinimum(const float* in, int n, int r, std::vector<float>& padded, std::vector<float>& prefix,
+                std::vector<float>& suffix, float* out) {
+    const int k = 2 * r + 1, m = (n + 2 * r + k - 1) / k * k;
+    padded.assign(static_cast<size_t>(m), INFINITY);
+    std::copy(in, in + n, padded.begin() + r);
+    prefix.resize(static_cast<size_t>(m));
+    suffix.resize(static_cast<size_t>(m));
+    for (int i = 0; i < m; ++i) prefix[i] = i % k ? std::min(prefix[i - 1], padded[i]) : padded[i];
+    for (int i = m - 1; i >= 0; --i) suffix[i] = (i + 1) % k ? std::min(suffix[i + 1], padded[i]) : padded[i];
+    // Element i's run is padded[i .. i + 2r]: a block's suffix from i and the next block's prefix.
+    for (int i = 0; i < n; ++i) out[i] = std::min(suffix[i], prefix[i + 2 * r]);
+}
+
+// The lowest z within Chebyshev distance r of pixel (x, y), inside the region, from the rows'
+// minima: what the pit's search window can reach at best (PathSearch::find's window_min).
+float windowMinimum(const std::vector<float>& row_min, int w, int h, int x, int y, int r) {
+    float lowest = INFINITY;
+    for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy)
+        lowest = std::min(lowest, row_min[static_cast<size_t>(yy) * w + x]);
+    return lowest;
+}
+
+// Runs fn(first_row, row_step) on `threads` threads, rows interleaved.
+template <typename Fn>
+void onThreads(int threads, Fn&& fn) {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(fn, t);
+    fn(0);
+    for (std::thread& t : pool) t.join();
+}
 
 bool copiedFromClosedDepression(const DatabaseLevel& db, const PixelState& s) {
     const size_t q = static_cast<size_t>(std::lround(s.y)) * db.width + static_cast<size_t>(std::lround(s.x));
@@ -163,8 +221,6 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
                         std::vector<PixelState>& state) {
     const int w = region.width, h = region.height;
     const std::vector<uint8_t> fixed = protectedPixels(db, inputs, state);
-    std::vector<float> z(state.size());
-    for (size_t i = 0; i < z.size(); ++i) z[i] = heightBilinear(db, state[i].x, state[i].y) + state[i].v;
     // Pits that can reach the needed pixels: within `radius` of them (interior pixels only).
     int x0 = 1, y0 = 1, x1 = w - 2, y1 = h - 2;
     if (inputs.needed.width > 0 && inputs.needed.height > 0) {
@@ -173,24 +229,38 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
         y1 = std::min(y1, inputs.needed.y - region.y + inputs.needed.height - 1 + radius);
     }
 
-    // Each worker searches every n-th row of pits into its own ceilings; the lowest carve wins.
+    const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1,
+                                   std::min(kMaxBreachThreads, std::max(1, h / 8)));
+    // Heights, and each row's minimum over 2 * radius + 1 columns (for the pits' window minima).
+    std::vector<float> z(state.size()), row_min(state.size());
+    onThreads(threads, [&](int t) {
+        for (int y = t; y < h; y += threads)
+            for (int x = 0; x < w; ++x) {
+                const size_t i = static_cast<size_t>(y) * w + x;
+                z[i] = heightBilinear(db, state[i].x, state[i].y) + state[i].v;
+            }
+        std::vector<float> padded, prefix, suffix;
+        for (int y = t; y < h; y += threads)
+            rowMinimum(&z[static_cast<size_t>(y) * w], w, radius, padded, prefix, suffix, &row_min[static_cast<size_t>(y) * w]);
+    });
+
+    // Each worker searches every n-th row of pits and lists its carves (pixel, ceiling); the lowest
+    // carve of a pixel wins, whatever the order.
     struct Worker {
-        std::vector<float> ceiling;
+        std::vector<std::pair<int, float>> carves;
         BreachCounts counts;
     };
-    const int rows = std::max(0, y1 - y0 + 1);
-    const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::min(4, std::max(1, rows / 8)));
     std::vector<Worker> workers(static_cast<size_t>(threads));
     auto work = [&](int t) {
         Worker& out = workers[static_cast<size_t>(t)];
-        out.ceiling.assign(z.size(), INFINITY);
         PathSearch search(radius);
         for (int y = y0 + t; y <= y1; y += threads)
             for (int x = x0; x <= x1; ++x) {
                 if (!isPit(z, w, y * w + x)) continue;
                 ++out.counts.pits;
                 if (copiedFromClosedDepression(db, state[y * w + x])) continue;  // a real basin: keep it
-                const std::vector<int> path = search.find(z, fixed, w, h, x, y, inputs.depth_margin, inputs.carve_to_edge);
+                const std::vector<int> path = search.find(z, fixed, w, h, x, y, inputs.depth_margin, inputs.carve_to_edge,
+                                                          windowMinimum(row_min, w, h, x, y, radius));
                 if (path.empty()) continue;
                 ++out.counts.breached;
                 // A straight profile from the pit down to the lower pixel; cells already below it
@@ -200,21 +270,17 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
                 const float k = static_cast<float>(path.size() - 1);
                 for (size_t i = 0; i < path.size(); ++i) {
                     const float line = top - (top - bottom) * (static_cast<float>(i) / k);
-                    out.ceiling[path[i]] = std::min(out.ceiling[path[i]], std::min(z[path[i]], line));
+                    out.carves.push_back({path[i], std::min(z[path[i]], line)});
                 }
             }
     };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (std::thread& t : pool) t.join();
+    onThreads(threads, work);
 
     BreachCounts counts;
-    std::vector<float>& ceiling = workers[0].ceiling;
-    for (size_t t = 0; t < workers.size(); ++t) {
-        counts.pits += workers[t].counts.pits, counts.breached += workers[t].counts.breached;
-        if (t > 0)
-            for (size_t i = 0; i < ceiling.size(); ++i) ceiling[i] = std::min(ceiling[i], workers[t].ceiling[i]);
+    std::vector<float> ceiling(z.size(), INFINITY);
+    for (const Worker& worker : workers) {
+        counts.pits += worker.counts.pits, counts.breached += worker.counts.breached;
+        for (const auto& [pixel, carve] : worker.carves) ceiling[pixel] = std::min(ceiling[pixel], carve);
     }
     for (size_t i = 0; i < z.size(); ++i) {
         if (ceiling[i] < z[i]) state[i].v = state[i].v - (z[i] - ceiling[i]);

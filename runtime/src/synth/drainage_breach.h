@@ -77,8 +77,10 @@ struct BreachCounts {
 // Breaches the region's pits (see above), lowering V along carved paths and setting every pixel's
 // ceiling. Runs on the host for both backends: the search is sparse and irregular (about one pixel
 // in a hundred is a pit), and the same code on both sides keeps them bit-identical. Pits are
-// searched on up to 4 threads (hardware concurrency); paths combine by the lowest carve, so the
-// result does not depend on the thread count. Pixels outside `inputs.needed` grown by `radius`
+// searched on up to 8 threads (hardware concurrency); paths combine by the lowest carve, so the
+// result does not depend on the thread count. A search that cannot reach `depth_margin` below its
+// pit (the window's lowest height says so) stops at the first lower pixel, where an exhausted
+// search would have ended. Pixels outside `inputs.needed` grown by `radius`
 // may miss carves from pits beyond it.
 BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int radius, const DrainageInputs& inputs,
                         std::vector<PixelState>& state);
