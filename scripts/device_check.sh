@@ -70,6 +70,17 @@ timeout 240 "$pack/bin/synth_bench" --benchmark_filter='OpenCL|LiftPoints' --ben
   --benchmark_report_aggregates_only=true --benchmark_out="$OUT/synth_bench.json" --benchmark_out_format=json 2>&1 |
   grep -E 'median|Run on|CPU|Mpixel' | grep -v -E 'mean|stddev|cv'
 
+if [ -x "$pack/bin/synth_bench_before" ]; then
+  echo "== before | now, 1024^2, three interleaved rounds (median of 5 each)"
+  for round in 1 2 3; do
+    for b in synth_bench_before synth_bench; do
+      printf '%s %s: ' "$round" "$b"
+      timeout 120 "$pack/bin/$b" --benchmark_filter='OpenCL(Breach)?/1024' --benchmark_repetitions=5 \
+        --benchmark_report_aggregates_only=true 2>&1 | awk '/median/{printf "%s %s %s  ", $1, $2, $3} END{print ""}'
+    done
+  done
+fi
+
 echo "== work-group shapes, 1024^2"
 for shape in 32,2 16,16 64,4 128,1; do
   printf '%s: ' "$shape"
@@ -77,9 +88,23 @@ for shape in 32,2 16,16 64,4 128,1; do
     --benchmark_repetitions=5 --benchmark_report_aggregates_only=true 2>&1 | grep median | awk '{print $2, $3}'
 done
 
-echo "== default project, 1024^2, for comparison with PoCL"
-( cd "$root/data" && "$pack/bin/terrasynth" synth default.tsyn -o "$OUT/gpu_default.png" --seed 3 &&
-  "$pack/bin/terrasynth" synth default.tsyn -o "$OUT/gpu_default_breach.png" --seed 3 --drainage breach ) 2>&1 | tail -4
+echo "== editing through the session and incremental synthesis (1024^2)"
+timeout 150 "$pack/bin/session_bench" --benchmark_filter='PointDrag|UndoDragStep|Previewed' --benchmark_repetitions=3 \
+  --benchmark_report_aggregates_only=true 2>&1 | grep median | awk '{print $1, $2, $3}'
+timeout 100 "$pack/bin/incremental_bench" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true 2>&1 |
+  awk '$1 ~ /median$/ {print $1, $2, $3}'
+
+echo "== larger extents (CLI, default project, drainage off; synthesis time as printed)"
+for size in 2048 4096 8192; do
+  for i in 1 2; do
+    timeout 120 "$pack/bin/terrasynth" synth "$root/data/default.tsyn" --size ${size}x$size --seed 3 -o /tmp/big.f32 2>&1 |
+      grep -o 'synthesis.*' | sed "s/^/${size}^2: /"
+  done
+done
+
+echo "== default project, 1024^2, seed 3, as float32 (compared bit for bit with PoCL here)"
+( cd "$root/data" && "$pack/bin/terrasynth" synth default.tsyn -o "$OUT/gpu_default.f32" --seed 3 &&
+  "$pack/bin/terrasynth" synth default.tsyn -o "$OUT/gpu_default_breach.f32" --seed 3 --drainage breach ) 2>&1 | tail -4
 echo "== done; test binaries that failed: $(grep -L -x 0 "$tests_dir"/*.rc 2>/dev/null | xargs -r -n1 basename | tr '\n' ' ')"
 }
 
