@@ -144,5 +144,22 @@ TEST(Drainage, APitOutOfReachOfTheMarginDrainsToTheFirstLowerPixel) {
     }
 }
 
+TEST(Drainage, APathCostsItsLengthSoDiagonalsAreNotFree) {
+    // Two outlets 1 m below the pit across a plain 10 m above it: 6 pixels east (5 cells between)
+    // and 5 pixels diagonally south-east (4 cells between, 7.1 pixels long). Counted per cell, the
+    // diagonal was cheaper, and coarse channels ran as long 45-degree trenches; counted per unit
+    // of length (cells x step length) the shorter east path wins.
+    std::vector<PixelState> state(static_cast<size_t>(kSide) * kSide);
+    for (PixelState& s : state) s.x = s.y = 8.0f, s.v = 10.0f;
+    auto at = [&](int x, int y) -> float& { return state[static_cast<size_t>(y) * kSide + x].v; };
+    at(kCentre, kCentre) = 0.0f;
+    at(kCentre + 6, kCentre) = -1.0f;
+    at(kCentre + 5, kCentre + 5) = -1.0f;
+    const DatabaseLevel db = levelExemplar();
+    breachPits(db, {0, 0, kSide, kSide}, kRadius, DrainageInputs{}, state);
+    for (int i = 1; i < 6; ++i) EXPECT_LT(at(kCentre + i, kCentre), 0.0f) << "east, " << i;
+    for (int i = 1; i < 5; ++i) EXPECT_EQ(at(kCentre + i, kCentre + i), 10.0f) << "diagonal, " << i;
+}
+
 }  // namespace
 }  // namespace terrasynth::synth

@@ -86,7 +86,7 @@ public:
                         continue;
                     const int n = ny * side_ + nx;
                     if (done_[n]) continue;
-                    const float step = std::max(0.0f, z[ry * w + rx] - bottom) + (dx && dy ? 1.414e-3f : 1e-3f);
+                    const float step = (std::max(0.0f, z[ry * w + rx] - bottom) + 1e-3f) * (dx && dy ? 1.41421356f : 1.0f);
                     if (d + step < cost_[n]) {
                         cost_[n] = d + step;
                         parent_[n] = cell;
@@ -165,7 +165,7 @@ float windowMinimum(const std::vector<float>& row_min, int w, int h, int x, int 
     return lowest;
 }
 
-// Runs fn(first_row, row_step) on `threads` threads, rows interleaved.
+// Runs fn(t) for t in [0, threads), t = 0 on the calling thread and each other t on its own.
 template <typename Fn>
 void onThreads(int threads, Fn&& fn) {
     std::vector<std::thread> pool;

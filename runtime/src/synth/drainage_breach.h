@@ -7,8 +7,9 @@
 // for the cheapest path, within `radius` pixels (Chebyshev) of it, to a pixel at least
 // `depth_margin` lower than itself (else to the first strictly lower one it met, else, at coarse
 // levels, to the cheapest pixel on the window's edge: DrainageInputs::carve_to_edge); cost = metres
-// above the pit summed along the path (plus a millimetre per pixel, so the shorter of equal paths
-// wins). The path is carved to a straight profile from the pit down to that
+// above the pit plus a millimetre, times the step's length (1 or sqrt 2), summed along the path: a
+// cost per cell made diagonal steps 41% cheaper per metre, and coarse channels ran as straight
+// 45-degree trenches across valley floors (docs/realism.md). The path is carved to a straight profile from the pit down to that
 // pixel by lowering V. Paths are searched on the heights before any carving and combined by taking
 // the lowest carve, so the result does not depend on the order of pits; a pixel depends only on
 // heights within 2 * radius + 1 of it (the reach the window plan adds to the level's margin).
