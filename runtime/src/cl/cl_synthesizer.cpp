@@ -265,7 +265,10 @@ private:
     // Runs `edit` on the level's state on the host: one read-back, one write-back.
     template <class Edit>
     Status editStateOnHost(const synth::LevelRegion& region, Edit&& edit) {
-        std::vector<synth::PixelState> state(region.pixels());
+        // Kept between calls: a fresh 17 MB vector per drained level cost more in page faults
+        // than the copy itself (level 0 of a 1024^2 breach: 8.9 ms against 1.7 ms).
+        std::vector<synth::PixelState>& state = host_state_;
+        state.resize(region.pixels());
         static_assert(sizeof(synth::PixelState) == sizeof(cl_float4), "state layout");
         TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
                                         state.data(), 0, nullptr, nullptr));
@@ -342,6 +345,7 @@ private:
     size_t current_capacity_ = 0, next_capacity_ = 0;
     size_t local_[2] = {32, 2};
     synth::DepthMargins depth_margins_;
+    std::vector<synth::PixelState> host_state_;  // editStateOnHost's staging copy
     double bytes_per_pixel_ = 0.0;
 };
 
