@@ -290,7 +290,7 @@ private:
     float depthMargin(int level) override { return depth_margins_.at(*db_, level); }
     Status drain(int level, const synth::LevelRegion& region, int radius, const synth::DrainageInputs& inputs) override {
         return editStateOnHost(region, [&](std::vector<synth::PixelState>& state) {
-            synth::breachPits(db_->levels[level], region, radius, inputs, state);
+            synth::breachPits(db_->levels[level], region, radius, inputs, state, &breach_scratch_);
         });
     }
 
@@ -346,6 +346,7 @@ private:
     size_t local_[2] = {32, 2};
     synth::DepthMargins depth_margins_;
     std::vector<synth::PixelState> host_state_;  // editStateOnHost's staging copy
+    synth::BreachScratch breach_scratch_;
     double bytes_per_pixel_ = 0.0;
 };
 

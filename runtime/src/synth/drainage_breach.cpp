@@ -21,8 +21,9 @@ namespace {
 constexpr int kMaxBreachThreads = 8;
 
 // Frozen pixels take the recorded post-breach state; frozen and constrained pixels are never carved.
-std::vector<uint8_t> protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, std::vector<PixelState>& state) {
-    std::vector<uint8_t> fixed(state.size(), 0);
+void protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, std::vector<PixelState>& state,
+                     std::vector<uint8_t>& fixed) {
+    fixed.assign(state.size(), 0);
     const bool coherence = in.coherence && in.coherence->size() == state.size();
     const bool drained = in.drained && in.drained->index.size() == state.size();
     const bool blend = in.blend && in.blend->size() == 4 * state.size();
@@ -33,7 +34,6 @@ std::vector<uint8_t> protectedPixels(const DatabaseLevel& db, const DrainageInpu
         }
         if (blend && (*in.blend)[4 * i] > 0.0f) fixed[i] = 1;
     }
-    return fixed;
 }
 
 // One pit's search window: cost, predecessor and state per cell of the (2R+1)^2 square.
@@ -218,9 +218,12 @@ float DepthMargins::at(const ExemplarDatabase& db, int level) {
 }
 
 BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int radius, const DrainageInputs& inputs,
-                        std::vector<PixelState>& state) {
+                        std::vector<PixelState>& state, BreachScratch* scratch) {
     const int w = region.width, h = region.height;
-    const std::vector<uint8_t> fixed = protectedPixels(db, inputs, state);
+    BreachScratch own;
+    BreachScratch& buffers = scratch ? *scratch : own;
+    std::vector<uint8_t>& fixed = buffers.fixed;
+    protectedPixels(db, inputs, state, fixed);
     // Pits that can reach the needed pixels: within `radius` of them (interior pixels only).
     int x0 = 1, y0 = 1, x1 = w - 2, y1 = h - 2;
     if (inputs.needed.width > 0 && inputs.needed.height > 0) {
@@ -232,7 +235,10 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1,
                                    std::min(kMaxBreachThreads, std::max(1, h / 8)));
     // Heights, and each row's minimum over 2 * radius + 1 columns (for the pits' window minima).
-    std::vector<float> z(state.size()), row_min(state.size());
+    std::vector<float>& z = buffers.z;
+    std::vector<float>& row_min = buffers.row_min;
+    z.resize(state.size());
+    row_min.resize(state.size());
     onThreads(threads, [&](int t) {
         for (int y = t; y < h; y += threads)
             for (int x = 0; x < w; ++x) {
@@ -277,7 +283,8 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     onThreads(threads, work);
 
     BreachCounts counts;
-    std::vector<float> ceiling(z.size(), INFINITY);
+    std::vector<float>& ceiling = buffers.ceiling;
+    ceiling.assign(z.size(), INFINITY);
     for (const Worker& worker : workers) {
         counts.pits += worker.counts.pits, counts.breached += worker.counts.breached;
         for (const auto& [pixel, carve] : worker.carves) ceiling[pixel] = std::min(ceiling[pixel], carve);
