@@ -34,11 +34,13 @@ fi
 export LD_LIBRARY_PATH=$pack/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 ldconfig -p | grep -q 'libz.so.1 ' || export LD_LIBRARY_PATH=$LD_LIBRARY_PATH:$pack/libz
 
-# The binaries carry this checkout's paths (/work/main/...); point them here.
-if [ ! -e /work/main/data/exemplars ]; then mkdir -p /work && ln -sfn "$root" /work/main; fi
-mkdir -p /work/main/build/pocl_cache /work/main/build/test_tmp
-export TERRASYNTH_DATA_DIR=$root/data TERRASYNTH_BIN_DIR=$pack/bin TERRASYNTH_TEST_TMP=/work/main/build/test_tmp
-export POCL_CACHE_DIR=/work/main/build/pocl_cache
+# The binaries carry the packing checkout's paths (its data and build folders); point them here.
+home=$(cat "$pack/checkout_path" 2>/dev/null || echo /work/main)
+if [ ! -e "$home/data/exemplars" ]; then mkdir -p "$(dirname "$home")" && ln -sfn "$root" "$home"; fi
+build=$(cat "$pack/build_path" 2>/dev/null || echo "$home/build")
+mkdir -p "$build/pocl_cache" "$build/test_tmp"
+export TERRASYNTH_DATA_DIR=$root/data TERRASYNTH_BIN_DIR=$pack/bin TERRASYNTH_TEST_TMP=$build/test_tmp
+export POCL_CACHE_DIR=$build/pocl_cache
 
 echo "== devices seen by terrasynth"
 # A device name that matches none makes the runtime list every device it can see.

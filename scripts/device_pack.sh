@@ -19,5 +19,8 @@ ldd .device/bin/* .device/tests/* | awk '/=> \//{print $3}' | sort -u |
   grep -v -E '/(libc|libm|libgcc_s|libstdc\+\+|ld-linux[^/]*)\.so' | while read -r lib; do
     case $lib in */libz.so.*) cp -L "$lib" .device/libz/ ;; *) cp -L "$lib" .device/lib/ ;; esac
   done
+# The binaries carry this checkout's absolute paths (data, build); device_check.sh links them there.
+pwd >.device/checkout_path
+(cd "$build" && pwd) >.device/build_path
 grep -qx '/.device/' .git/info/exclude 2>/dev/null || echo '/.device/' >>.git/info/exclude
 du -sh .device
