@@ -55,13 +55,23 @@ float minOnWindowEdge(const std::vector<PixelState>& state) {
     return lowest;
 }
 
-BreachCounts breach(std::vector<PixelState>& state, bool to_edge, const std::vector<float>* blend = nullptr) {
+BreachCounts breach(std::vector<PixelState>& state, bool to_edge, const std::vector<float>* blend = nullptr,
+                    float depth_margin = 0.0f) {
     const DatabaseLevel db = levelExemplar();
     DrainageInputs in;
     in.carve_to_edge = to_edge;
     in.blend = blend;
+    in.depth_margin = depth_margin;
     return breachPits(db, {0, 0, kSide, kSide}, kRadius, in, state);
 }
+
+// A plain of V = `height` over the flat level exemplar, and V at region pixel (x, y).
+std::vector<PixelState> plain(float height) {
+    std::vector<PixelState> state(static_cast<size_t>(kSide) * kSide);
+    for (PixelState& s : state) s.x = s.y = 8.0f, s.v = height;
+    return state;
+}
+float& vAt(std::vector<PixelState>& state, int x, int y) { return state[static_cast<size_t>(y) * kSide + x].v; }
 
 TEST(Drainage, ARegionalLowStaysWithoutCarvingToTheEdge) {
     std::vector<PixelState> state = cone();
@@ -103,24 +113,14 @@ TEST(Drainage, AProtectedPixelOnTheEdgeIsNeverLowered) {
 // A plain at 10 m near the region's north edge (so the search windows are clipped by it), with a pit
 // at 0 m, a shallow hollow 4 pixels east (-0.5 m) and, optionally, a deep one 7 pixels west (-5 m).
 constexpr int kRow = 3, kPit = 20, kShallow = 24, kDeep = 13;
-std::vector<PixelState> plainWithHollows(bool deep) {
-    std::vector<PixelState> state(static_cast<size_t>(kSide) * kSide);
-    for (PixelState& s : state) s.x = s.y = 8.0f, s.v = 10.0f;
-    auto at = [&](int x) -> float& { return state[static_cast<size_t>(kRow) * kSide + x].v; };
-    at(kPit) = 0.0f;
-    at(kShallow) = -0.5f;
-    if (deep) at(kDeep) = -5.0f;
-    return state;
-}
-
 std::vector<float> rowAfterBreach(bool deep, float depth_margin) {
-    std::vector<PixelState> state = plainWithHollows(deep);
-    const DatabaseLevel db = levelExemplar();
-    DrainageInputs in;
-    in.depth_margin = depth_margin;
-    breachPits(db, {0, 0, kSide, kSide}, kRadius, in, state);
+    std::vector<PixelState> state = plain(10.0f);
+    vAt(state, kPit, kRow) = 0.0f;
+    vAt(state, kShallow, kRow) = -0.5f;
+    if (deep) vAt(state, kDeep, kRow) = -5.0f;
+    breach(state, false, nullptr, depth_margin);
     std::vector<float> row(kSide);
-    for (int x = 0; x < kSide; ++x) row[x] = state[static_cast<size_t>(kRow) * kSide + x].v;
+    for (int x = 0; x < kSide; ++x) row[x] = vAt(state, x, kRow);
     return row;
 }
 
@@ -149,16 +149,13 @@ TEST(Drainage, APathCostsItsLengthSoDiagonalsAreNotFree) {
     // and 5 pixels diagonally south-east (4 cells between, 7.1 pixels long). Counted per cell, the
     // diagonal was cheaper, and coarse channels ran as long 45-degree trenches; counted per unit
     // of length (cells x step length) the shorter east path wins.
-    std::vector<PixelState> state(static_cast<size_t>(kSide) * kSide);
-    for (PixelState& s : state) s.x = s.y = 8.0f, s.v = 10.0f;
-    auto at = [&](int x, int y) -> float& { return state[static_cast<size_t>(y) * kSide + x].v; };
-    at(kCentre, kCentre) = 0.0f;
-    at(kCentre + 6, kCentre) = -1.0f;
-    at(kCentre + 5, kCentre + 5) = -1.0f;
-    const DatabaseLevel db = levelExemplar();
-    breachPits(db, {0, 0, kSide, kSide}, kRadius, DrainageInputs{}, state);
-    for (int i = 1; i < 6; ++i) EXPECT_LT(at(kCentre + i, kCentre), 0.0f) << "east, " << i;
-    for (int i = 1; i < 5; ++i) EXPECT_EQ(at(kCentre + i, kCentre + i), 10.0f) << "diagonal, " << i;
+    std::vector<PixelState> state = plain(10.0f);
+    vAt(state, kCentre, kCentre) = 0.0f;
+    vAt(state, kCentre + 6, kCentre) = -1.0f;
+    vAt(state, kCentre + 5, kCentre + 5) = -1.0f;
+    breach(state, false);
+    for (int i = 1; i < 6; ++i) EXPECT_LT(vAt(state, kCentre + i, kCentre), 0.0f) << "east, " << i;
+    for (int i = 1; i < 5; ++i) EXPECT_EQ(vAt(state, kCentre + i, kCentre + i), 10.0f) << "diagonal, " << i;
 }
 
 }  // namespace
