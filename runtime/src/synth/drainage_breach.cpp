@@ -240,14 +240,13 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     z.resize(state.size());
     row_min.resize(state.size());
     onThreads(threads, [&](int t) {
-        for (int y = t; y < h; y += threads)
-            for (int x = 0; x < w; ++x) {
-                const size_t i = static_cast<size_t>(y) * w + x;
-                z[i] = heightBilinear(db, state[i].x, state[i].y) + state[i].v;
-            }
         std::vector<float> padded, prefix, suffix;
-        for (int y = t; y < h; y += threads)
-            rowMinimum(&z[static_cast<size_t>(y) * w], w, radius, padded, prefix, suffix, &row_min[static_cast<size_t>(y) * w]);
+        for (int y = t; y < h; y += threads) {
+            float* row = &z[static_cast<size_t>(y) * w];
+            const PixelState* row_state = &state[static_cast<size_t>(y) * w];
+            for (int x = 0; x < w; ++x) row[x] = heightBilinear(db, row_state[x].x, row_state[x].y) + row_state[x].v;
+            rowMinimum(row, w, radius, padded, prefix, suffix, &row_min[static_cast<size_t>(y) * w]);
+        }
     });
 
     // Each worker searches every n-th row of pits and lists its carves (pixel, ceiling); the lowest
@@ -282,17 +281,23 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     };
     onThreads(threads, work);
 
+    // Every pixel's ceiling is +inf but where carved: the carves go into the state's ceilings first
+    // (lowest wins), then the carved pixels are lowered to them.
     BreachCounts counts;
-    std::vector<float>& ceiling = buffers.ceiling;
-    ceiling.assign(z.size(), INFINITY);
+    onThreads(threads, [&](int t) {
+        const size_t begin = state.size() * t / threads, end = state.size() * (t + 1) / threads;
+        for (size_t i = begin; i < end; ++i) state[i].ceiling = INFINITY;
+    });
     for (const Worker& worker : workers) {
         counts.pits += worker.counts.pits, counts.breached += worker.counts.breached;
-        for (const auto& [pixel, carve] : worker.carves) ceiling[pixel] = std::min(ceiling[pixel], carve);
+        for (const auto& [pixel, carve] : worker.carves) state[pixel].ceiling = std::min(state[pixel].ceiling, carve);
     }
-    for (size_t i = 0; i < z.size(); ++i) {
-        if (ceiling[i] < z[i]) state[i].v = state[i].v - (z[i] - ceiling[i]);
-        state[i].ceiling = ceiling[i];
-    }
+    for (const Worker& worker : workers)
+        for (const auto& [pixel, carve] : worker.carves) {
+            PixelState& s = state[pixel];
+            // z takes the ceiling so that a pixel carved by several paths is lowered once.
+            if (s.ceiling < z[pixel] && carve == s.ceiling) s.v = s.v - (z[pixel] - s.ceiling), z[pixel] = s.ceiling;
+        }
     return counts;
 }
 

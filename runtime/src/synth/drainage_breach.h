@@ -76,12 +76,12 @@ struct BreachCounts {
 };
 
 // Per-pixel buffers of breachPits, kept between calls by a synthesizer that breaches often: at
-// level 0 of a 1024^2 synthesis they are about 14 MB, and first touching fresh memory costs several
+// level 0 of a 1024^2 synthesis they are about 11 MB, and first touching fresh memory costs several
 // times a pass over touched memory (the OpenCL backend's 17 MB staging copy: 8.9 ms against 1.7).
 // Not thread-safe: one per synthesizer, like DepthMargins.
 struct BreachScratch {
     std::vector<uint8_t> fixed;
-    std::vector<float> z, row_min, ceiling;
+    std::vector<float> z, row_min;
 };
 
 // Breaches the region's pits (see above), lowering V along carved paths and setting every pixel's

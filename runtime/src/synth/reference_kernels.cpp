@@ -59,6 +59,8 @@ float heightBilinear(const DatabaseLevel& db, float sx, float sy) {
     const float fx = std::floor(sx), fy = std::floor(sy);
     const float tx = sx - fx, ty = sy - fy;
     const size_t i = static_cast<size_t>(fy) * db.width + static_cast<size_t>(fx);
+    // Corrected coordinates are whole pixels: one tap, the value the lerps would give.
+    if (tx == 0.0f && ty == 0.0f) return db.height_m[i];
     const float top = lerp(db.height_m[i], db.height_m[i + 1], tx);
     const float bot = lerp(db.height_m[i + db.width], db.height_m[i + db.width + 1], tx);
     return lerp(top, bot, ty);
