@@ -42,7 +42,8 @@ public:
     explicit PathSearch(int radius) : radius_(radius), side_(2 * radius + 1), cells_(side_ * side_) {
         cost_.resize(cells_);
         parent_.resize(cells_);
-        done_.resize(cells_);
+        reached_.assign(cells_, 0);
+        done_.assign(cells_, 0);
     }
 
     // Region pixels of the cheapest path from the pit at (x, y) to a pixel `margin` lower, pit first;
@@ -64,18 +65,17 @@ public:
         // same cost but a lower index pops after it (a step can round to nothing on a long path):
         // the search goes on while the cost stays the same.
         int edge = -1;
-        std::fill(cost_.begin(), cost_.end(), INFINITY);
-        std::fill(done_.begin(), done_.end(), 0);
+        nextSearch();
         open_.clear();
         const int centre = radius_ * side_ + radius_;
-        cost_[centre] = 0.0f;
+        reach(centre, 0.0f);
         parent_[centre] = -1;
         push({0.0f, centre});
         while (!open_.empty()) {
             const auto [d, cell] = pop();
-            if (done_[cell]) continue;
+            if (isDone(cell)) continue;
             if (edge >= 0 && d > cost_[edge]) return trace(edge, w, x, y);
-            done_[cell] = 1;
+            done_[cell] = search_;
             const int cx = cell % side_, cy = cell / side_;
             const int gx = x + cx - radius_, gy = y + cy - radius_;
             if (to_edge && !lower_reachable && isEdge(cx, cy) && !fixed[gy * w + gx] && (edge < 0 || cell < edge)) edge = cell;
@@ -93,10 +93,10 @@ public:
                         ry >= h)
                         continue;
                     const int n = ny * side_ + nx;
-                    if (done_[n]) continue;
+                    if (isDone(n)) continue;
                     const float step = (std::max(0.0f, z[ry * w + rx] - bottom) + 1e-3f) * (dx && dy ? 1.41421356f : 1.0f);
-                    if (d + step < cost_[n]) {
-                        cost_[n] = d + step;
+                    if (reached_[n] != search_ || d + step < cost_[n]) {
+                        reach(n, d + step);
                         parent_[n] = cell;
                         push({cost_[n], n});
                     }
@@ -122,6 +122,18 @@ private:
         return e;
     }
 
+    // Cells carry the number of the search that last reached or settled them, so a new search
+    // starts without clearing the window (at level 4, 65^2 cells per pit).
+    void nextSearch() {
+        if (++search_ == 0) {  // wrapped: stale stamps could match again
+            std::fill(reached_.begin(), reached_.end(), 0);
+            std::fill(done_.begin(), done_.end(), 0);
+            search_ = 1;
+        }
+    }
+    void reach(int cell, float cost) { cost_[cell] = cost, reached_[cell] = search_; }
+    bool isDone(int cell) const { return done_[cell] == search_; }
+
     bool isEdge(int cx, int cy) const { return cx == 0 || cy == 0 || cx == side_ - 1 || cy == side_ - 1; }
 
     // The reached, unprotected cell on the window's edge with the lowest path cost (ties: the lower
@@ -130,7 +142,7 @@ private:
         int best = -1;
         for (int c = 0; c < cells_; ++c) {
             const int cx = c % side_, cy = c / side_;
-            if (!done_[c] || !isEdge(cx, cy)) continue;
+            if (!isDone(c) || !isEdge(cx, cy)) continue;
             if (fixed[(y + cy - radius_) * w + (x + cx - radius_)]) continue;  // never lowered
             if (best < 0 || cost_[c] < cost_[best]) best = c;
         }
@@ -148,7 +160,8 @@ private:
     int radius_, side_, cells_;
     std::vector<float> cost_;
     std::vector<int> parent_;
-    std::vector<uint8_t> done_;
+    std::vector<uint32_t> reached_, done_;  // search_ when reached (cost_ valid) / settled
+    uint32_t search_ = 0;
     std::vector<Entry> open_;
 };
 
