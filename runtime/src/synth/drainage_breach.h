@@ -89,8 +89,9 @@ struct BreachScratch {
 // in a hundred is a pit), and the same code on both sides keeps them bit-identical. Pits are
 // searched on up to 8 threads (hardware concurrency); paths combine by the lowest carve, so the
 // result does not depend on the thread count. A search that cannot reach `depth_margin` below its
-// pit (the window's lowest height says so) stops at the first lower pixel, where an exhausted
-// search would have ended. Pixels outside `inputs.needed` grown by `radius` may miss carves from
+// pit (the window's lowest height says so) stops at the first lower pixel, and one with nothing
+// lower in reach (carve_to_edge) at the first edge cell it settles: where an exhausted search would
+// have ended. Pixels outside `inputs.needed` grown by `radius` may miss carves from
 // pits beyond it.
 // scratch: optional; nullptr uses buffers of the call's own.
 BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int radius, const DrainageInputs& inputs,
