@@ -126,10 +126,10 @@ TEST(ExemplarRealism, BreachingLeavesFewerClosedDepressions) {
     // Issue 17, on every fluvial shared exemplar (512^2, seed 3): with drainage (Drainage::Breach,
     // off by default) the drainage area stays within the exemplar's own spread, and the share of
     // pixels in closed depressions either does too or is at most half as far from the exemplar's as
-    // without drainage (measured: within the spread for 8 of 14; orom_appalachians, highlands,
-    // himalaya-everest, karakoram, norway and wn_mackay lose 58-84% of their distance). Together
-    // the 14 lose at least half of it (measured: 66%). glac_mtperdu_20m and orom_andes-chile, whose
-    // depressions are within the spread either way, come out 0.2 and 0.5 points further than off.
+    // without drainage (measured: within the spread for 10 of 14; orom_appalachians, highlands,
+    // himalaya-everest and wn_mackay lose 56-78% of their distance). Together the 14 lose at least
+    // half of it (measured: 70%). orom_andes-chile, whose depressions are within the spread either
+    // way, comes out 0.55 points further than off. (With no breach at level 0, wn_big_butte lost 49%.)
     // The steering instrument's figures at 1024^2 and six seeds are in docs/realism.md.
     double total_on = 0.0, total_off = 0.0;
     for (const char* stem : kFluvial) {

@@ -78,10 +78,10 @@ constexpr int kInitialStrata = 3;
 // pixels, which the window plan adds to that level's margin, so windows stay bit-identical to
 // larger windows. Frozen pixels and pixels under point or curve constraints are never carved (a
 // path may end at a lower one). Cost: the search runs on the host and every level's region grows
-// by the reach: +18-40% synthesis time at 1024^2 on 2 CPU cores through PoCL (median +28%), and
-// about 20x the synthesis itself on a GPU, where the kernels take 2 ms; which is why Off is the
-// default (docs/realism.md, "Drainage"). Off: no drainage step; the synthesis is exactly what it is
-// without this feature (the issue 16 start of synthesis applies to both).
+// by the reach: about +30% synthesis time at 1024^2 on 2 CPU cores through PoCL (docs/realism.md,
+// "Drainage", has the rounds), and on a GPU, where the kernels take 2 ms, the host-side search is
+// most of the time; which is why Off is the default. Off: no drainage step; the synthesis is
+// exactly what it is without this feature (the issue 16 start of synthesis applies to both).
 enum class Drainage : uint8_t { Off = 0, Breach = 1 };
 // Search radius of the breach at `level`, in pixels of that level (docs/realism.md, "Drainage").
 int breachRadius(int level);

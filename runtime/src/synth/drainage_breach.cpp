@@ -7,8 +7,12 @@
 namespace terrasynth {
 
 int breachRadius(int level) {
-    // Pixels of the level: coarse levels are small and their basins span many kilometres.
-    static const int kRadius[] = {8, 8, 16, 24, 32};
+    // Pixels of the level: coarse levels are small and their basins span many kilometres. Level 0's
+    // pits are small, and at R = 8 its margin (2R+1 pixels around the largest region) and its pass
+    // over every pixel were about a third of the drainage's time; R = 2 keeps the gate figures
+    // (seeds 3-8: 79 of 84 fluvial runs pass, as at 8) and the 512^2 depression test, which no
+    // breach at level 0 misses (wn_big_butte; docs/realism.md, "Cost").
+    static const int kRadius[] = {2, 8, 16, 24, 32};
     return kRadius[std::min(std::max(level, 0), 4)];
 }
 
