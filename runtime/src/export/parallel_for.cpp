@@ -1,11 +1,9 @@
 // parallelFor: the exporters' worker loop.
 #include <atomic>
 #include <mutex>
-#include <thread>
-#include <vector>
 
+#include "core/workers.h"
 #include "export/export_internal.h"
-#include "terrasynth/guard.h"
 
 namespace terrasynth::export_detail {
 
@@ -23,12 +21,7 @@ Status parallelFor(int n, int threads, const std::function<Status(int)>& body) {
             }
         }
     };
-    std::vector<std::thread> pool;
-    FirstException thrown;  // rethrown here, never std::terminate in a worker
-    for (int t = 1; t < threads; ++t) pool.emplace_back([&] { thrown.run(worker); });
-    thrown.run(worker);
-    for (std::thread& t : pool) t.join();
-    thrown.rethrow();
+    runOnWorkers(threads, [&](int) { worker(); });
     return first;
 }
 

@@ -1,13 +1,11 @@
-// Row-parallel loops for the layer module: plain std::thread, deterministic results because every
+// Row-parallel loops for the layer module (core/workers.h), deterministic results because every
 // row is computed by exactly one worker from the same inputs regardless of scheduling.
 #pragma once
 
 #include <algorithm>
 #include <atomic>
-#include <thread>
-#include <vector>
 
-#include "terrasynth/guard.h"
+#include "core/workers.h"
 
 namespace terrasynth::layers {
 
@@ -16,29 +14,22 @@ namespace terrasynth::layers {
 template <class Fn>
 void parallelFor(int n, long cost_per_item, Fn&& fn) {
     if (n <= 0) return;
-    const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+    const int hw = hardwareThreads();
     const long total = static_cast<long>(n) * std::max(1L, cost_per_item);
     if (hw == 1 || total < (1L << 16) || n < 4) {
         fn(0, n);
         return;
     }
-    const int workers = static_cast<int>(std::min<unsigned>(hw, 8u));
+    const int workers = std::min(hw, 8);
     const int block = std::max(1, n / (workers * 4));
     std::atomic<int> next{0};
-    auto run = [&] {
+    runOnWorkers(workers, [&](int) {
         for (;;) {
             const int begin = next.fetch_add(block);
             if (begin >= n) return;
             fn(begin, std::min(n, begin + block));
         }
-    };
-    std::vector<std::thread> threads;
-    threads.reserve(workers - 1);
-    FirstException first;  // rethrown here, never std::terminate in a worker
-    for (int t = 1; t < workers; ++t) threads.emplace_back([&] { first.run(run); });
-    first.run(run);
-    for (auto& t : threads) t.join();
-    first.rethrow();
+    });
 }
 
 }  // namespace terrasynth::layers

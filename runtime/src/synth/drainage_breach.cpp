@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
+
+#include "core/workers.h"
 
 namespace terrasynth {
 
@@ -214,15 +215,6 @@ float pixelHeight(const DatabaseLevel& db, const PixelState& s) {
     return heightBilinear(db, s.x, s.y) + s.v;
 }
 
-// Runs fn(t) for t in [0, threads), t = 0 on the calling thread and each other t on its own.
-template <typename Fn>
-void onThreads(int threads, Fn&& fn) {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(fn, t);
-    fn(0);
-    for (std::thread& t : pool) t.join();
-}
-
 bool copiedFromClosedDepression(const DatabaseLevel& db, const PixelState& s) {
     const size_t q = static_cast<size_t>(std::lround(s.y)) * db.width + static_cast<size_t>(std::lround(s.x));
     return q < db.closed.size() && db.closed[q];
@@ -288,14 +280,14 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
         y1 = std::min(y1, inputs.needed.y - region.y + inputs.needed.height - 1 + radius);
     }
 
-    const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1,
+    const int threads = std::clamp(hardwareThreads(), 1,
                                    std::min(kMaxBreachThreads, std::max(1, h / 8)));
     // Heights, and for wide windows each row's minimum over 2 * radius + 1 columns.
     std::vector<float>& z = buffers.z;
     std::vector<float>& row_min = buffers.row_min;
     z.resize(state.size());
     row_min.resize(radius > kDirectMinimumRadius ? state.size() : 0);
-    onThreads(threads, [&](int t) {
+    runOnWorkers(threads, [&](int t) {
         std::vector<float> padded, prefix, suffix;
         for (int y = t; y < h; y += threads) {
             float* row = &z[static_cast<size_t>(y) * w];
@@ -339,12 +331,12 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
             }
         }
     };
-    onThreads(threads, work);
+    runOnWorkers(threads, work);
 
     // Every pixel's ceiling is +inf but where carved: the carves go into the state's ceilings first
     // (lowest wins), then the carved pixels are lowered to them.
     BreachCounts counts;
-    onThreads(threads, [&](int t) {
+    runOnWorkers(threads, [&](int t) {
         const size_t begin = state.size() * t / threads, end = state.size() * (t + 1) / threads;
         for (size_t i = begin; i < end; ++i) state[i].ceiling = INFINITY;
     });
