@@ -28,6 +28,13 @@ run() {
   local built=$SECONDS
   export POCL_CACHE_DIR="$PWD/$dir/pocl_cache"
   mkdir -p "$POCL_CACHE_DIR"
+  if [ "$name" = tsan ] && [ -x "$dir/tests/cl_synthesis_test" ]; then
+    # PoCL compiles the kernels with clang on its own threads, and TSan reports races inside that
+    # uninstrumented compiler (string appends, handed-over locks) that no suppression by library
+    # catches. Compiled once with reports off, the kernels come from PoCL's cache in the tests.
+    TSAN_OPTIONS="$TSAN_OPTIONS:report_bugs=0:halt_on_error=0:exitcode=0" "$dir/tests/cl_synthesis_test" \
+      --gtest_filter='Synthesis.AdjacentWindowsEqualHalvesOfTheWholeWindow' >/dev/null 2>&1 || true
+  fi
   local status=0
   ctest --test-dir "$dir" --output-on-failure -j"$jobs" --timeout 3000 ${SANITIZE_TESTS:+-R "$SANITIZE_TESTS"} || status=$?
   echo "sanitize $name: build $((built - start)) s, tests $((SECONDS - built)) s, status $status"
