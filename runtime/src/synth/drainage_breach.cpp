@@ -280,8 +280,7 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
         y1 = std::min(y1, inputs.needed.y - region.y + inputs.needed.height - 1 + radius);
     }
 
-    const int threads = std::clamp(hardwareThreads(), 1,
-                                   std::min(kMaxBreachThreads, std::max(1, h / 8)));
+    const int threads = std::min({hardwareThreads(), kMaxBreachThreads, std::max(1, h / 8)});
     // Heights, and for wide windows each row's minimum over 2 * radius + 1 columns.
     std::vector<float>& z = buffers.z;
     std::vector<float>& row_min = buffers.row_min;
