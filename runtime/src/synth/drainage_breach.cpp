@@ -206,15 +206,6 @@ float windowMinimum(const std::vector<float>& z, const std::vector<float>& row_m
     return lowest;
 }
 
-// E(S) + V of a pixel: heightBilinear, read directly at whole-pixel coordinates (corrected pixels
-// have them; same value), which made this pass several times faster than the call per pixel.
-float pixelHeight(const DatabaseLevel& db, const PixelState& s) {
-    const int ix = static_cast<int>(s.x), iy = static_cast<int>(s.y);  // atlas coordinates are >= 0
-    if (static_cast<float>(ix) == s.x && static_cast<float>(iy) == s.y)
-        return db.height_m[static_cast<size_t>(iy) * db.width + ix] + s.v;
-    return heightBilinear(db, s.x, s.y) + s.v;
-}
-
 bool copiedFromClosedDepression(const DatabaseLevel& db, const PixelState& s) {
     const size_t q = static_cast<size_t>(std::lround(s.y)) * db.width + static_cast<size_t>(std::lround(s.x));
     return q < db.closed.size() && db.closed[q];

@@ -59,8 +59,6 @@ float heightBilinear(const DatabaseLevel& db, float sx, float sy) {
     const float fx = std::floor(sx), fy = std::floor(sy);
     const float tx = sx - fx, ty = sy - fy;
     const size_t i = static_cast<size_t>(fy) * db.width + static_cast<size_t>(fx);
-    // Corrected coordinates are whole pixels: one tap, the value the lerps would give.
-    if (tx == 0.0f && ty == 0.0f) return db.height_m[i];
     const float top = lerp(db.height_m[i], db.height_m[i + 1], tx);
     const float bot = lerp(db.height_m[i + db.width], db.height_m[i + db.width + 1], tx);
     return lerp(top, bot, ty);
@@ -373,7 +371,7 @@ void referenceResolve(const DatabaseLevel& db, const LevelRegion& region, const 
         for (int x = 0; x < out.width; ++x) {
             const PixelState& s = state[static_cast<size_t>(out.y - region.y + y) * region.width + (out.x - region.x + x)];
             const size_t o = static_cast<size_t>(y) * out.width + x;
-            heights[o] = heightBilinear(db, s.x, s.y) + s.v;
+            heights[o] = pixelHeight(db, s);
             if (source_x) {
                 const int e = db.exemplar[static_cast<size_t>(std::floor(s.y)) * db.width + static_cast<size_t>(std::floor(s.x))];
                 source_x[o] = s.x - static_cast<float>(db.rects[e].x);

@@ -79,6 +79,16 @@ void referencePreviewLevel(const DatabaseLevel& db, const LevelRegion& region, c
 // state is (sx, sy) before its offset V.
 float heightBilinear(const DatabaseLevel& db, float sx, float sy);
 
+// E(S) + V of a pixel, in metres: heightBilinear plus the offset, read straight from the level at
+// whole-pixel coordinates (corrected pixels have them; the same value). Inline because a call per
+// pixel cost more than the rest of the drainage breach's height pass.
+inline float pixelHeight(const DatabaseLevel& db, const PixelState& s) {
+    const int ix = static_cast<int>(s.x), iy = static_cast<int>(s.y);  // atlas coordinates are >= 0
+    if (static_cast<float>(ix) == s.x && static_cast<float>(iy) == s.y)
+        return db.height_m[static_cast<size_t>(iy) * db.width + ix] + s.v;
+    return heightBilinear(db, s.x, s.y) + s.v;
+}
+
 // Final heights E(S) + V (bilinear in E) of `out` (inside `region`), and optionally the sources.
 void referenceResolve(const DatabaseLevel& db, const LevelRegion& region, const std::vector<PixelState>& state,
                       const LevelRegion& out, float* heights, float* source_x, float* source_y,
