@@ -65,10 +65,11 @@ public:
         const bool lower_reachable = window_min < bottom;
         if (!to_edge && !lower_reachable) return {};
         int fallback = -1;
-        // A regional low (nothing lower in the window) ends at the cheapest edge cell. Cells pop in
-        // (cost, cell) order, so the first unprotected edge cell popped is it, unless a cell of the
-        // same cost but a lower index pops after it (a step can round to nothing on a long path):
-        // the search goes on while the cost stays the same.
+        // The cheapest settled, unprotected cell on the window's edge (ties: the lower cell index).
+        // Cells settle in order of cost, so it is the first one settled, unless a cell of the same
+        // cost but a lower index settles after it (a step can round to nothing on a long path). A
+        // regional low (nothing lower in the window) ends there, so its search stops once the cost
+        // grows past it.
         int edge = -1;
         nextSearch();
         open_.clear();
@@ -79,11 +80,12 @@ public:
         while (!open_.empty()) {
             const auto [d, cell] = pop();
             if (isDone(cell)) continue;
-            if (edge >= 0 && d > cost_[edge]) return trace(edge, w, x, y);
+            if (!lower_reachable && edge >= 0 && d > cost_[edge]) return trace(edge, w, x, y);
             done_[cell] = search_;
             const int cx = cell % side_, cy = cell / side_;
             const int gx = x + cx - radius_, gy = y + cy - radius_;
-            if (to_edge && !lower_reachable && isEdge(cx, cy) && !fixed[gy * w + gx] && (edge < 0 || cell < edge)) edge = cell;
+            if (to_edge && isEdge(cx, cy) && !fixed[gy * w + gx] && (edge < 0 || (d == cost_[edge] && cell < edge)))
+                edge = cell;
             if (z[gy * w + gx] < bottom - margin) return trace(cell, w, x, y);
             if (fallback < 0 && z[gy * w + gx] < bottom) {
                 fallback = cell;
@@ -108,8 +110,7 @@ public:
                 }
         }
         if (fallback >= 0) return trace(fallback, w, x, y);
-        if (edge >= 0) return trace(edge, w, x, y);
-        return to_edge ? trace(cheapestEdgeCell(fixed, w, x, y), w, x, y) : std::vector<int>();
+        return trace(edge, w, x, y);  // empty when no edge cell (or no to_edge)
     }
 
 private:
@@ -140,19 +141,6 @@ private:
     bool isDone(int cell) const { return done_[cell] == search_; }
 
     bool isEdge(int cx, int cy) const { return cx == 0 || cy == 0 || cx == side_ - 1 || cy == side_ - 1; }
-
-    // The reached, unprotected cell on the window's edge with the lowest path cost (ties: the lower
-    // cell index); -1 when none was reached.
-    int cheapestEdgeCell(const std::vector<uint8_t>& fixed, int w, int x, int y) const {
-        int best = -1;
-        for (int c = 0; c < cells_; ++c) {
-            const int cx = c % side_, cy = c / side_;
-            if (!isDone(c) || !isEdge(cx, cy)) continue;
-            if (fixed[(y + cy - radius_) * w + (x + cx - radius_)]) continue;  // never lowered
-            if (best < 0 || cost_[c] < cost_[best]) best = c;
-        }
-        return best;
-    }
 
     std::vector<int> trace(int cell, int w, int x, int y) const {
         if (cell < 0) return {};
