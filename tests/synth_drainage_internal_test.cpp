@@ -62,7 +62,7 @@ BreachCounts breach(std::vector<PixelState>& state, bool to_edge, const std::vec
     in.carve_to_edge = to_edge;
     in.blend = blend;
     in.depth_margin = depth_margin;
-    return breachPits(db, {0, 0, kSide, kSide}, kRadius, in, state);
+    return breachPits(db, {0, 0, kSide, kSide}, kRadius, in, state.data());
 }
 
 // A plain of V = `height` over the flat level exemplar, and V at region pixel (x, y).

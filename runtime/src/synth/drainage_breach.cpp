@@ -26,13 +26,13 @@ namespace {
 constexpr int kMaxBreachThreads = 8;
 
 // Frozen pixels take the recorded post-breach state; frozen and constrained pixels are never carved.
-void protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, std::vector<PixelState>& state,
+void protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, PixelState* state, size_t pixels,
                      std::vector<uint8_t>& fixed) {
-    fixed.assign(state.size(), 0);
-    const bool coherence = in.coherence && in.coherence->size() == state.size();
-    const bool drained = in.drained && in.drained->index.size() == state.size();
-    const bool blend = in.blend && in.blend->size() == 4 * state.size();
-    for (size_t i = 0; i < state.size(); ++i) {
+    fixed.assign(pixels, 0);
+    const bool coherence = in.coherence && in.coherence->size() == pixels;
+    const bool drained = in.drained && in.drained->index.size() == pixels;
+    const bool blend = in.blend && in.blend->size() == 4 * pixels;
+    for (size_t i = 0; i < pixels; ++i) {
         if (coherence && (*in.coherence)[i] == static_cast<uint8_t>(Coherence::Frozen)) {
             fixed[i] = 1;
             if (drained && in.drained->index[i] != kNoPrevious) takePrevious(db, *in.drained, i, state[i]);
@@ -245,12 +245,13 @@ float DepthMargins::at(const ExemplarDatabase& db, int level) {
 }
 
 BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int radius, const DrainageInputs& inputs,
-                        std::vector<PixelState>& state, BreachScratch* scratch) {
+                        PixelState* state, BreachScratch* scratch) {
     const int w = region.width, h = region.height;
+    const size_t pixels = region.pixels();
     BreachScratch own;
     BreachScratch& buffers = scratch ? *scratch : own;
     std::vector<uint8_t>& fixed = buffers.fixed;
-    protectedPixels(db, inputs, state, fixed);
+    protectedPixels(db, inputs, state, pixels, fixed);
     // Pits that can reach the needed pixels: within `radius` of them (interior pixels only).
     int x0 = 1, y0 = 1, x1 = w - 2, y1 = h - 2;
     if (inputs.needed.width > 0 && inputs.needed.height > 0) {
@@ -263,8 +264,8 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     // Heights, and for wide windows each row's minimum over 2 * radius + 1 columns.
     std::vector<float>& z = buffers.z;
     std::vector<float>& row_min = buffers.row_min;
-    z.resize(state.size());
-    row_min.resize(radius > kDirectMinimumRadius ? state.size() : 0);
+    z.resize(pixels);
+    row_min.resize(radius > kDirectMinimumRadius ? pixels : 0);
     runOnWorkers(threads, [&](int t) {
         std::vector<float> padded, prefix, suffix;
         for (int y = t; y < h; y += threads) {
@@ -315,7 +316,7 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     // (lowest wins), then the carved pixels are lowered to them.
     BreachCounts counts;
     runOnWorkers(threads, [&](int t) {
-        const size_t begin = state.size() * t / threads, end = state.size() * (t + 1) / threads;
+        const size_t begin = pixels * t / threads, end = pixels * (t + 1) / threads;
         for (size_t i = begin; i < end; ++i) state[i].ceiling = INFINITY;
     });
     for (const Worker& worker : workers) {

@@ -94,7 +94,8 @@ struct BreachScratch {
 // have ended. Pixels outside `inputs.needed` grown by `radius` may miss carves from
 // pits beyond it.
 // scratch: optional; nullptr uses buffers of the call's own.
+// state: the region's region.pixels() pixels, row-major (the OpenCL backend passes its mapped buffer).
 BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int radius, const DrainageInputs& inputs,
-                        std::vector<PixelState>& state, BreachScratch* scratch = nullptr);
+                        PixelState* state, BreachScratch* scratch = nullptr);
 
 }  // namespace terrasynth::synth

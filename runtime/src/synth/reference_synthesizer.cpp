@@ -58,7 +58,7 @@ public:
     }
     float depthMargin(int level) override { return margins_.at(db_, level); }
     Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) override {
-        breachPits(db_.levels[level], region, radius, inputs, current_);
+        breachPits(db_.levels[level], region, radius, inputs, current_.data());
         return Status::ok();
     }
     Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
