@@ -56,12 +56,13 @@ float minOnWindowEdge(const std::vector<PixelState>& state) {
 }
 
 BreachCounts breach(std::vector<PixelState>& state, bool to_edge, const std::vector<float>* blend = nullptr,
-                    float depth_margin = 0.0f) {
+                    float depth_margin = 0.0f, const std::vector<uint8_t>* basin_exemplars = nullptr) {
     const DatabaseLevel db = levelExemplar();
     DrainageInputs in;
     in.carve_to_edge = to_edge;
     in.blend = blend;
     in.depth_margin = depth_margin;
+    in.basin_exemplars = basin_exemplars;
     return breachPits(db, {0, 0, kSide, kSide}, kRadius, in, state.data());
 }
 
@@ -96,6 +97,46 @@ TEST(Drainage, ARegionalLowIsCarvedDownToTheCheapestEdgeOfItsWindow) {
         EXPECT_LE(state[static_cast<size_t>(kCentre) * kSide + x - 1].v, state[static_cast<size_t>(kCentre) * kSide + x].v) << x;
     for (int x = kCentre + 1; x < kSide; ++x)  // the dearer side is untouched
         EXPECT_GT(state[static_cast<size_t>(kCentre) * kSide + x].v, 0.0f) << x;
+}
+
+TEST(Drainage, ARegionalLowOfAnExemplarWithRealBasinsIsKept) {
+    // Lava plains and salars hold closed basins the exemplar itself has: their regional lows stay.
+    const std::vector<uint8_t> exemplar0_has_basins = {1};
+    std::vector<PixelState> state = cone();
+    const std::vector<PixelState> before = state;
+    EXPECT_EQ(breach(state, true, nullptr, 0.0f, &exemplar0_has_basins).breached, 0u);
+    for (size_t i = 0; i < state.size(); ++i) ASSERT_EQ(state[i].v, before[i].v) << "pixel " << i;
+    // Another exemplar's basins change nothing here: the low is carved to the edge as before.
+    const std::vector<uint8_t> only_exemplar1 = {0, 1};
+    EXPECT_EQ(breach(state, true, nullptr, 0.0f, &only_exemplar1).breached, 1u);
+    EXPECT_LT(minOnWindowEdge(state), 0.0f);
+}
+
+TEST(Drainage, APitOfAnExemplarWithRealBasinsStillDrainsToALowerPixelInReach) {
+    // Only regional lows are kept: a pit with a lower pixel within the radius drains as always.
+    const std::vector<uint8_t> exemplar0_has_basins = {1};
+    std::vector<PixelState> state = plain(10.0f);
+    vAt(state, kCentre, kCentre) = 0.0f;
+    vAt(state, kCentre - 5, kCentre) = -3.0f;
+    EXPECT_EQ(breach(state, true, nullptr, 0.0f, &exemplar0_has_basins).breached, 1u);
+    for (int x = kCentre - 4; x < kCentre; ++x) EXPECT_LT(vAt(state, x, kCentre), 10.0f) << x;
+}
+
+TEST(Drainage, ExemplarsWithRealBasinsAreThoseWithManyClosedPixels) {
+    // Two exemplars side by side at level 0: the first with 1 closed pixel in 64 (1.6%), the second
+    // with 4 in 64 (6.3%); kRealBasinShare = 4% lies between.
+    ExemplarDatabase db;
+    db.exemplars.resize(2);
+    DatabaseLevel l;
+    l.width = 16, l.height = 8;
+    l.exemplar.assign(l.pixelCount(), 0);
+    l.closed.assign(l.pixelCount(), 0);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 8; x < 16; ++x) l.exemplar[static_cast<size_t>(y) * 16 + x] = 1;
+    l.closed[0] = 1;
+    for (int i = 0; i < 4; ++i) l.closed[static_cast<size_t>(i) * 16 + 9] = 1;
+    db.levels.push_back(l);
+    EXPECT_EQ(exemplarsWithRealBasins(db), (std::vector<uint8_t>{0, 1}));
 }
 
 TEST(Drainage, AProtectedPixelOnTheEdgeIsNeverLowered) {

@@ -74,7 +74,9 @@ constexpr int kInitialStrata = 3;
 // heights become a ceiling the next level's correction may not exceed (the channel is re-detailed
 // from the exemplars below it). At levels 2-4 a pit with no lower pixel within the radius (a
 // regional low) is carved to the cheapest pixel on the edge of its search window instead, which
-// ends below it. Bounded reach: a pixel depends on heights within 2 * breachRadius(level) + 1
+// ends below it, unless it was copied from an exemplar with real basins (at least 4% of its own
+// pixels in closed depressions: lava plains, salars, karst, dunes), whose regional lows are kept.
+// Bounded reach: a pixel depends on heights within 2 * breachRadius(level) + 1
 // pixels, which the window plan adds to that level's margin, so windows stay bit-identical to
 // larger windows. Frozen pixels and pixels under point or curve constraints are never carved (a
 // path may end at a lower one). Cost: the search runs on the host and every level's region grows

@@ -312,6 +312,7 @@ private:
 
     // Breaching runs on the host (drainage_breach.h).
     float depthMargin(int level) override { return depth_margins_.at(*db_, level); }
+    const std::vector<uint8_t>& basinExemplars() override { return depth_margins_.basinExemplars(*db_); }
     Status drain(int level, const synth::LevelRegion& region, int radius, const synth::DrainageInputs& inputs) override {
         return editMappedState(region, [&](synth::PixelState* state) {
             synth::breachPits(db_->levels[level], region, radius, inputs, state, &breach_scratch_);

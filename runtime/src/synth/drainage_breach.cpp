@@ -199,6 +199,15 @@ bool copiedFromClosedDepression(const DatabaseLevel& db, const PixelState& s) {
     return q < db.closed.size() && db.closed[q];
 }
 
+// Whether the pixel was copied from an exemplar with real basins (DrainageInputs::basin_exemplars).
+bool copiedFromBasinExemplar(const DatabaseLevel& db, const std::vector<uint8_t>* basin_exemplars, const PixelState& s) {
+    if (!basin_exemplars) return false;
+    const size_t q = static_cast<size_t>(std::lround(s.y)) * db.width + static_cast<size_t>(std::lround(s.x));
+    if (q >= db.exemplar.size()) return false;
+    const uint8_t e = db.exemplar[q];
+    return e < basin_exemplars->size() && (*basin_exemplars)[e];
+}
+
 // Marks the pits of row y between columns x0 and x1 (interior pixels): pixels lower than their 8
 // neighbours in (height, row, column) order, where of two equal heights the earlier pixel is the
 // lower, so an earlier neighbour must be strictly higher and a later one at least as high. All
@@ -235,6 +244,27 @@ float breachDepthMargin(const DatabaseLevel& db) {
     if (relief.empty()) return 0.0f;
     std::nth_element(relief.begin(), relief.begin() + relief.size() / 2, relief.end());
     return kBreachDepthFraction * relief[relief.size() / 2];
+}
+
+std::vector<uint8_t> exemplarsWithRealBasins(const ExemplarDatabase& db) {
+    if (db.levels.empty()) return {};
+    const DatabaseLevel& level0 = db.levels[0];
+    std::vector<size_t> pixels(db.exemplars.size(), 0), closed(db.exemplars.size(), 0);
+    for (size_t i = 0; i < level0.exemplar.size() && i < level0.closed.size(); ++i) {
+        const uint8_t e = level0.exemplar[i];
+        if (e >= pixels.size()) continue;  // padding
+        ++pixels[e];
+        closed[e] += level0.closed[i] ? 1 : 0;
+    }
+    std::vector<uint8_t> real(pixels.size(), 0);
+    for (size_t e = 0; e < pixels.size(); ++e)
+        real[e] = pixels[e] > 0 && static_cast<double>(closed[e]) >= kRealBasinShare * static_cast<double>(pixels[e]);
+    return real;
+}
+
+const std::vector<uint8_t>& DepthMargins::basinExemplars(const ExemplarDatabase& db) {
+    if (!basins_known_) basin_exemplars_ = exemplarsWithRealBasins(db), basins_known_ = true;
+    return basin_exemplars_;
 }
 
 float DepthMargins::at(const ExemplarDatabase& db, int level) {
@@ -294,8 +324,12 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
                 if (!pit[x]) continue;
                 ++out.counts.pits;
                 if (copiedFromClosedDepression(db, state[y * w + x])) continue;  // a real basin: keep it
-                const std::vector<int> path = search.find(z, fixed, w, h, x, y, inputs.depth_margin, inputs.carve_to_edge,
-                                                          windowMinimum(z, row_min, w, h, x, y, radius));
+                const float window_min = windowMinimum(z, row_min, w, h, x, y, radius);
+                // A regional low of an exemplar with real basins is one of them: kept.
+                const bool to_edge = inputs.carve_to_edge &&
+                                     !(window_min >= z[y * w + x] && copiedFromBasinExemplar(db, inputs.basin_exemplars, state[y * w + x]));
+                const std::vector<int> path =
+                    search.find(z, fixed, w, h, x, y, inputs.depth_margin, to_edge, window_min);
                 if (path.empty()) continue;
                 ++out.counts.breached;
                 // A straight profile from the pit down to the lower pixel; cells already below it

@@ -6,7 +6,8 @@
 // neighbours in (height, global row, global column) order, so flat-bottomed pits count once) looks
 // for the cheapest path, within `radius` pixels (Chebyshev) of it, to a pixel at least
 // `depth_margin` lower than itself (else to the first strictly lower one it met, else, at coarse
-// levels, to the cheapest pixel on the window's edge: DrainageInputs::carve_to_edge); cost = metres
+// levels, to the cheapest pixel on the window's edge: DrainageInputs::carve_to_edge, unless copied
+// from an exemplar with real basins: DrainageInputs::basin_exemplars); cost = metres
 // above the pit plus a millimetre, times the step's length (1 or sqrt 2), summed along the path: a
 // cost per cell made diagonal steps 41% cheaper per metre, and coarse channels ran as straight
 // 45-degree trenches across valley floors (docs/realism.md). The path is carved to a straight
@@ -37,14 +38,28 @@ constexpr float kBreachDepthFraction = 0.5f;
 // row and column), in metres. Cost: a pass over a quarter of the level's atlas.
 float breachDepthMargin(const DatabaseLevel& db);
 
-// breachDepthMargin per level, computed on first use (a synthesizer owns one; not thread-safe).
+// An exemplar whose own level-0 pixels are at least this share in closed depressions (Priority-Flood
+// raises them: DatabaseLevel::closed) has real basins, lava plains or salars, not only valleys: its
+// regional lows are kept, not carved to the window's edge (DrainageInputs::basin_exemplars). Level-0
+// shares of the shared exemplars: fluvial and glacial 0.4-2.8%, wn_big_butte 5.3%, glac_sthelens_10m
+// 6.2%, orom_andes-chile 10.0%, karst and dune fields 11.5-42.4% (docs/realism.md, "Regional lows").
+constexpr float kRealBasinShare = 0.04f;
+
+// 1 per exemplar index whose level-0 closed share is at least kRealBasinShare.
+std::vector<uint8_t> exemplarsWithRealBasins(const ExemplarDatabase& db);
+
+// breachDepthMargin per level and exemplarsWithRealBasins, computed on first use (a synthesizer owns
+// one; not thread-safe).
 class DepthMargins {
 public:
     float at(const ExemplarDatabase& db, int level);
+    const std::vector<uint8_t>& basinExemplars(const ExemplarDatabase& db);
 
 private:
     std::vector<float> margins_;
     std::vector<uint8_t> known_;
+    std::vector<uint8_t> basin_exemplars_;
+    bool basins_known_ = false;
 };
 
 // How far below the pit a path to the window's edge ends at least (DrainageInputs::carve_to_edge), metres.
@@ -68,6 +83,9 @@ struct DrainageInputs {
     // output reads. Only pits within `radius` of it can carve it, so the others are not searched.
     // Empty: the whole region.
     LevelRegion needed;
+    // Per exemplar index (exemplarsWithRealBasins): 1 keeps the regional lows copied from that
+    // exemplar instead of carving them to the edge. Null or short: none kept.
+    const std::vector<uint8_t>* basin_exemplars = nullptr;
 };
 
 struct BreachCounts {

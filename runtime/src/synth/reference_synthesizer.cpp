@@ -57,6 +57,7 @@ public:
         return Status::ok();
     }
     float depthMargin(int level) override { return margins_.at(db_, level); }
+    const std::vector<uint8_t>& basinExemplars() override { return margins_.basinExemplars(db_); }
     Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) override {
         breachPits(db_.levels[level], region, radius, inputs, current_.data());
         return Status::ok();

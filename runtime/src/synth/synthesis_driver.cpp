@@ -185,7 +185,7 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         const PassHistory drained = previousPass(params.previous.get(), level, passes, region);
         Status s = steps.drain(level, region, breachRadius(level),
                                {&coherence, &drained, &constraints.blend, steps.depthMargin(level),
-                                level >= kBreachToEdgeFromLevel, plan.needed[level]});
+                                level >= kBreachToEdgeFromLevel, plan.needed[level], &steps.basinExemplars()});
         if (!s) return s;
         return history ? steps.recordPass(level, region, history->levels[level].passes.back()) : Status::ok();
     };

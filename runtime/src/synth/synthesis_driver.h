@@ -49,6 +49,8 @@ public:
     virtual Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) = 0;
     // breachDepthMargin of a level, cached by the backend.
     virtual float depthMargin(int level) = 0;
+    // exemplarsWithRealBasins of the database, cached by the backend.
+    virtual const std::vector<uint8_t>& basinExemplars() = 0;
     virtual Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
                            bool want_sources) = 0;
 };
