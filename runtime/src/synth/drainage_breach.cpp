@@ -194,15 +194,20 @@ float windowMinimum(const std::vector<float>& z, const std::vector<float>& row_m
     return lowest;
 }
 
+// The atlas pixel a pixel was copied from (its coordinate rounded).
+size_t sourcePixel(const DatabaseLevel& db, const PixelState& s) {
+    return static_cast<size_t>(std::lround(s.y)) * db.width + static_cast<size_t>(std::lround(s.x));
+}
+
 bool copiedFromClosedDepression(const DatabaseLevel& db, const PixelState& s) {
-    const size_t q = static_cast<size_t>(std::lround(s.y)) * db.width + static_cast<size_t>(std::lround(s.x));
+    const size_t q = sourcePixel(db, s);
     return q < db.closed.size() && db.closed[q];
 }
 
 // Whether the pixel was copied from an exemplar with real basins (DrainageInputs::basin_exemplars).
 bool copiedFromBasinExemplar(const DatabaseLevel& db, const std::vector<uint8_t>* basin_exemplars, const PixelState& s) {
     if (!basin_exemplars) return false;
-    const size_t q = static_cast<size_t>(std::lround(s.y)) * db.width + static_cast<size_t>(std::lround(s.x));
+    const size_t q = sourcePixel(db, s);
     if (q >= db.exemplar.size()) return false;
     const uint8_t e = db.exemplar[q];
     return e < basin_exemplars->size() && (*basin_exemplars)[e];
