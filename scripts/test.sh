@@ -9,9 +9,10 @@ npm ci --prefix scripts --no-audit --no-fund --loglevel=error
 export POCL_CACHE_DIR="$PWD/build/pocl_cache"
 mkdir -p "$POCL_CACHE_DIR"
 ctest --test-dir build --output-on-failure -j"${JOBS:-2}" --timeout 1200
-# On CI also the runtime and CLI tests under ASan + UBSan (issue 20): measured 2026-11-30 on the 2
-# cores, build about 20 min, tests 6.5 min, 221/221 clean; the full suite (plugin, editor, game)
-# under the sanitizers stays a script: scripts/sanitize.sh.
+# On CI also the runtime and CLI tests under ASan + UBSan (issue 20), less the surveys (label
+# `survey`: statistics over every exemplar, which the Release run above already asserts). The full
+# suite (plugin, editor, game, surveys) under the sanitizers stays a script: scripts/sanitize.sh.
+# Figures for the whole CI run are in docs/limits.md.
 if [ "${CI:-}" = true ]; then
-  SANITIZE_SCOPE=runtime bash scripts/sanitize.sh address
+  SANITIZE_SCOPE=runtime SANITIZE_EXCLUDE_LABEL=survey bash scripts/sanitize.sh address
 fi
