@@ -262,22 +262,6 @@ private:
         return run(correct_.get(), count_x, count_y);
     }
 
-    // Runs `edit` on the level's state on the host: one read-back, one write-back.
-    template <class Edit>
-    Status editStateOnHost(const synth::LevelRegion& region, Edit&& edit) {
-        // Kept between calls: a fresh 17 MB vector per drained level cost more in page faults
-        // than the copy itself (level 0 of a 1024^2 breach: 8.9 ms against 1.7 ms).
-        std::vector<synth::PixelState>& state = host_state_;
-        state.resize(region.pixels());
-        static_assert(sizeof(synth::PixelState) == sizeof(cl_float4), "state layout");
-        TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
-                                        state.data(), 0, nullptr, nullptr));
-        edit(state);
-        TS_CL_CHECK(clEnqueueWriteBuffer(queue_.get(), current_.get(), CL_TRUE, 0, state.size() * sizeof(cl_float4),
-                                         state.data(), 0, nullptr, nullptr));
-        return Status::ok();
-    }
-
     // Runs `edit` on the level's state in place, mapped. On a CPU device (PoCL) the map is the
     // buffer's own memory: a read-back and a write-back cost two copies of the state per drained
     // level (17 MB each at level 0 of a 1024^2 synthesis); a GPU driver copies as they would.
@@ -305,7 +289,7 @@ private:
     // A preview level runs on the host (no kernel: it is as cheap there and the reference defines it).
     Status previewLevel(int level, const synth::LevelRegion& region, const std::vector<uint8_t>& coherence,
                         const synth::PassHistory& previous) override {
-        return editStateOnHost(region, [&](std::vector<synth::PixelState>& state) {
+        return editMappedState(region, [&](synth::PixelState* state) {
             synth::referencePreviewLevel(db_->levels[level], region, coherence, previous, state);
         });
     }
@@ -370,7 +354,6 @@ private:
     size_t current_capacity_ = 0, next_capacity_ = 0;
     size_t local_[2] = {32, 2};
     synth::DepthMargins depth_margins_;
-    std::vector<synth::PixelState> host_state_;  // editStateOnHost's staging copy
     synth::BreachScratch breach_scratch_;
     double bytes_per_pixel_ = 0.0;
 };

@@ -209,18 +209,19 @@ float phiD(float x, float d, float s, float lambda) {
 }  // namespace
 
 void referencePreviewLevel(const DatabaseLevel& db, const LevelRegion& region, const std::vector<uint8_t>& coherence,
-                           const PassHistory& previous, std::vector<PixelState>& state) {
+                           const PassHistory& previous, PixelState* state) {
+    const size_t pixels = region.pixels();
     // Atlas coordinates are never negative: truncation is floor (as in the kernels).
-    for (PixelState& p : state) {
-        p.x = static_cast<float>(static_cast<int>(p.x + 0.5f));
-        p.y = static_cast<float>(static_cast<int>(p.y + 0.5f));
+    for (size_t i = 0; i < pixels; ++i) {
+        state[i].x = static_cast<float>(static_cast<int>(state[i].x + 0.5f));
+        state[i].y = static_cast<float>(static_cast<int>(state[i].y + 0.5f));
     }
     // A child sits a quarter of a parent pixel from its own parent's centre towards the parent on
     // its side (west when its global x is even, east when odd), whose V the neighbour on that side
     // holds: V moves a quarter of the way there, when that neighbour continues the child's own
     // exemplar coordinate (inside a patch, where V ramps under a constraint). Across a seam the
     // offsets differ by whatever makes the parents' heights meet, so V stays.
-    const std::vector<PixelState> upsampled = state;
+    const std::vector<PixelState> upsampled(state, state + pixels);
     auto shift = [&](size_t i, size_t o, float dx, float dy) {
         const PixelState &a = upsampled[i], &b = upsampled[o];
         const bool continues = b.x == a.x + dx && b.y == a.y + dy;

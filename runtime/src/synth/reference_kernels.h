@@ -71,9 +71,10 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
 // history recorded from it gives back the same heights, with V interpolated bilinearly between the
 // parents (upsampling copies a parent's V to its 2x2 children, which only the correction passes
 // would smooth: a constraint's ramp would show as 2-pixel steps). `coherence` and `previous` are per
-// region pixel (empty: none kept).
+// region pixel (empty: none kept). `state`: region.pixels() states, row-major (the OpenCL backend
+// passes its mapped buffer).
 void referencePreviewLevel(const DatabaseLevel& db, const LevelRegion& region, const std::vector<uint8_t>& coherence,
-                           const PassHistory& previous, std::vector<PixelState>& state);
+                           const PassHistory& previous, PixelState* state);
 
 // E at a real-valued atlas coordinate (bilinear), in metres: the height resolve gives a pixel whose
 // state is (sx, sy) before its offset V.

@@ -53,7 +53,7 @@ public:
     }
     Status previewLevel(int level, const LevelRegion& region, const std::vector<uint8_t>& coherence,
                         const PassHistory& previous) override {
-        referencePreviewLevel(db_.levels[level], region, coherence, previous, current_);
+        referencePreviewLevel(db_.levels[level], region, coherence, previous, current_.data());
         return Status::ok();
     }
     float depthMargin(int level) override { return margins_.at(db_, level); }
