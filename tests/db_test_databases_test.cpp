@@ -4,8 +4,10 @@
 // database at once: two cores on one 17-exemplar build, six minutes under the sanitizers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "test_support.h"
 
@@ -15,10 +17,9 @@ namespace {
 
 // Exemplar images in `dir` (a database holds one exemplar per readable PNG there).
 size_t pngsIn(const std::string& dir) {
-    size_t n = 0;
-    for (const auto& e : std::filesystem::directory_iterator(dir))
-        if (e.path().extension() == ".png") ++n;
-    return n;
+    const std::vector<std::string> files = test::filesUnder(dir);
+    return std::count_if(files.begin(), files.end(),
+                         [](const std::string& f) { return std::filesystem::path(f).extension() == ".png"; });
 }
 
 }  // namespace
