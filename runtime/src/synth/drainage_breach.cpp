@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <functional>
 
 #include "core/workers.h"
 
@@ -76,9 +78,11 @@ public:
         const int centre = radius_ * side_ + radius_;
         reach(centre, 0.0f);
         parent_[centre] = -1;
-        push({0.0f, centre});
+        push(entry(0.0f, centre));
         while (!open_.empty()) {
-            const auto [d, cell] = pop();
+            const Entry top = pop();
+            const float d = costOf(top);
+            const int cell = cellOf(top);
             if (isDone(cell)) continue;
             if (!lower_reachable && edge >= 0 && d > cost_[edge]) return trace(edge, w, x, y);
             done_[cell] = search_;
@@ -105,7 +109,7 @@ public:
                     if (reached_[n] != search_ || d + step < cost_[n]) {
                         reach(n, d + step);
                         parent_[n] = cell;
-                        push({cost_[n], n});
+                        push(entry(cost_[n], n));
                     }
                 }
         }
@@ -114,9 +118,22 @@ public:
     }
 
 private:
-    // A binary min-heap on (cost, window cell), kept between searches. A cell is pushed again only
-    // with a lower cost, so no two entries are equal and the pop order is that of any heap.
-    using Entry = std::pair<float, int>;
+    // A binary min-heap on (cost, window cell) packed into one integer: a cost is never negative,
+    // so its float bits order as the cost does, and the cell breaks ties. A cell is pushed again
+    // only with a lower cost, so no two entries are equal and the pop order is that of any heap.
+    using Entry = uint64_t;
+    static Entry entry(float cost, int cell) {
+        uint32_t bits;
+        std::memcpy(&bits, &cost, sizeof bits);
+        return static_cast<Entry>(bits) << 32 | static_cast<uint32_t>(cell);
+    }
+    static float costOf(Entry e) {
+        const uint32_t bits = static_cast<uint32_t>(e >> 32);
+        float cost;
+        std::memcpy(&cost, &bits, sizeof cost);
+        return cost;
+    }
+    static int cellOf(Entry e) { return static_cast<int>(static_cast<uint32_t>(e)); }
     void push(Entry e) {
         open_.push_back(e);
         std::push_heap(open_.begin(), open_.end(), std::greater<Entry>());
@@ -296,7 +313,12 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     }
 
     const int threads = std::min({hardwareThreads(), kMaxBreachThreads, std::max(1, h / 8)});
-    // Heights, and for wide windows each row's minimum over 2 * radius + 1 columns.
+    // Heights, and for wide windows each row's minimum over 2 * radius + 1 columns, where the
+    // searches read them: within radius + 1 of the pits (at level 4 of a 1024^2 synthesis, 67% of
+    // the region). Every pixel's ceiling becomes +inf in the same pass over the state (the carves
+    // set theirs below): a pass of its own over the state cost about as much as the heights.
+    const int zx0 = std::max(0, x0 - radius - 1), zx1 = std::min(w - 1, x1 + radius + 1);
+    const int zy0 = std::max(0, y0 - radius - 1), zy1 = std::min(h - 1, y1 + radius + 1);
     std::vector<float>& z = buffers.z;
     std::vector<float>& row_min = buffers.row_min;
     z.resize(pixels);
@@ -304,11 +326,16 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     runOnWorkers(threads, [&](int t) {
         std::vector<float> padded, prefix, suffix;
         for (int y = t; y < h; y += threads) {
-            float* row = &z[static_cast<size_t>(y) * w];
-            const PixelState* row_state = &state[static_cast<size_t>(y) * w];
-            for (int x = 0; x < w; ++x) row[x] = pixelHeight(db, row_state[x]);
-            if (!row_min.empty())
-                rowMinimum(row, w, radius, padded, prefix, suffix, &row_min[static_cast<size_t>(y) * w]);
+            PixelState* row_state = &state[static_cast<size_t>(y) * w];
+            if (y >= zy0 && y <= zy1 && zx0 <= zx1) {
+                float* row = &z[static_cast<size_t>(y) * w];
+                for (int x = zx0; x <= zx1; ++x) row[x] = pixelHeight(db, row_state[x]);
+                // The sub-row's own ends clamp a window only where the region's ends would.
+                if (!row_min.empty())
+                    rowMinimum(row + zx0, zx1 - zx0 + 1, radius, padded, prefix, suffix,
+                               &row_min[static_cast<size_t>(y) * w + zx0]);
+            }
+            for (int x = 0; x < w; ++x) row_state[x].ceiling = INFINITY;
         }
     });
 
@@ -354,10 +381,6 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     // Every pixel's ceiling is +inf but where carved: the carves go into the state's ceilings first
     // (lowest wins), then the carved pixels are lowered to them.
     BreachCounts counts;
-    runOnWorkers(threads, [&](int t) {
-        const size_t begin = pixels * t / threads, end = pixels * (t + 1) / threads;
-        for (size_t i = begin; i < end; ++i) state[i].ceiling = INFINITY;
-    });
     for (const Worker& worker : workers) {
         counts.pits += worker.counts.pits, counts.breached += worker.counts.breached;
         for (const auto& [pixel, carve] : worker.carves) state[pixel].ceiling = std::min(state[pixel].ceiling, carve);
