@@ -3,8 +3,11 @@
 // Run: build/bin/synth_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 #include "terrasynth/synthesizer.h"
 
@@ -66,6 +69,46 @@ void BM_SynthesizeReference(benchmark::State& state) { synthesize(state, Synthes
 // With the drainage step (issue 17, off by default), to see its cost next to BM_SynthesizeOpenCL.
 void BM_SynthesizeOpenCLBreach(benchmark::State& state) { synthesize(state, SynthesisBackend::OpenCL, Drainage::Breach); }
 
+// Issue 17's cost figure (breach over off, "same run"): each iteration synthesizes one window with
+// drainage off and the next with breach, the order alternating, so both see the same minutes of a
+// shared machine, whose speed drifts by 20% and more between runs of a few seconds (docs/realism.md,
+// "Cost, 2026-12-01"). Reports the medians of each and the median of the pairs' own ratios; the
+// iteration time is the pair's.
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+void BM_BreachOverOff(benchmark::State& state) {
+    const int size = static_cast<int>(state.range(0));
+    Synthesizer& s = synthesizer(SynthesisBackend::OpenCL);
+    SynthesisParams off, breach;
+    off.drainage = Drainage::Off;
+    breach.drainage = Drainage::Breach;
+    s.synthesize({0, 0, size, size}, off, 0, false);  // warm-up, as in synthesize()
+    s.synthesize({0, 0, size, size}, breach, 0, false);
+    std::vector<double> off_ms, breach_ms, ratios;
+    int64_t tile = 0;
+    auto timed = [&](const SynthesisParams& params) {
+        const auto start = std::chrono::steady_clock::now();
+        auto out = s.synthesize({tile++ * size, 0, size, size}, params, 0, false);
+        if (!out) state.SkipWithError(out.message().c_str());
+        benchmark::DoNotOptimize(out);
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    };
+    for (auto _ : state) {
+        const bool off_first = off_ms.size() % 2 == 0;
+        const double first = timed(off_first ? off : breach), second = timed(off_first ? breach : off);
+        off_ms.push_back(off_first ? first : second);
+        breach_ms.push_back(off_first ? second : first);
+        ratios.push_back(breach_ms.back() / off_ms.back());
+    }
+    state.counters["off_ms"] = median(off_ms);
+    state.counters["breach_ms"] = median(breach_ms);
+    state.counters["breach_over_off"] = median(ratios);
+}
+
 // Point lifting (issue 20: about 80 ms per point before sites shared windows): range(0) random point
 // constraints over a range(1)^2 extent, lifted onto their heights (up to 10 rounds).
 void BM_LiftPoints(benchmark::State& state) {
@@ -94,6 +137,7 @@ void BM_LiftPoints(benchmark::State& state) {
 
 BENCHMARK(BM_SynthesizeOpenCL)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SynthesizeOpenCLBreach)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BreachOverOff)->Arg(1024)->Iterations(20)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SynthesizeReference)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_LiftPoints)->Args({100, 256})->Args({1000, 1024})->Args({10000, 1024})->Unit(benchmark::kMillisecond)
     ->UseRealTime()->Iterations(1);
