@@ -1,6 +1,7 @@
 #include "synth/drainage_breach.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -34,6 +35,7 @@ void protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, PixelSta
     const bool coherence = in.coherence && in.coherence->size() == pixels;
     const bool drained = in.drained && in.drained->index.size() == pixels;
     const bool blend = in.blend && in.blend->size() == 4 * pixels;
+    if (!coherence && !blend) return;  // a synthesis with neither freezes nor constraints
     for (size_t i = 0; i < pixels; ++i) {
         if (coherence && (*in.coherence)[i] == static_cast<uint8_t>(Coherence::Frozen)) {
             fixed[i] = 1;
@@ -43,29 +45,39 @@ void protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, PixelSta
     }
 }
 
-// One pit's search window: cost, predecessor and state per cell of the (2R+1)^2 square.
+// One pit's search window: cost, predecessor, region pixel and state per cell of the (2R+1)^2
+// square, stored with a ring of one cell around it that is never entered, so a cell's eight
+// neighbours need no bounds test. Cells are numbered row-major in the ringed square, which orders
+// them as the square's own row-major numbers do (the heap's and the edge's tie-breaks).
 class PathSearch {
 public:
-    explicit PathSearch(int radius) : radius_(radius), side_(2 * radius + 1), cells_(side_ * side_) {
+    explicit PathSearch(int radius)
+        : radius_(radius), side_(2 * radius + 1), stride_(side_ + 2), cells_(stride_ * stride_) {
         cost_.resize(cells_);
         parent_.resize(cells_);
+        region_index_.resize(cells_);
         reached_.assign(cells_, 0);
         done_.assign(cells_, 0);
+        window_edge_.assign(cells_, 0);
+        for (int cy = 0; cy < side_; ++cy)
+            for (int cx = 0; cx < side_; ++cx)
+                window_edge_[cellAt(cx, cy)] = cx == 0 || cy == 0 || cx == side_ - 1 || cy == side_ - 1;
     }
 
     // Region pixels of the cheapest path from the pit at (x, y) to a pixel `margin` lower, pit first;
     // else to the first strictly lower pixel the search met; else (to_edge) to the cheapest reached
-    // cell on the window's edge; else empty.
+    // cell on the window's edge; else empty. The path goes into `path`; false when empty.
     // window_min: the lowest height of the region within the radius of the pit. It changes no
     // result, only the work: when no pixel is `margin` lower, the whole window would be searched in
     // vain and the answer is the first lower pixel met, so the search stops there (at coarse levels
     // most searches are such, and they were most of the breach's time).
-    std::vector<int> find(const std::vector<float>& z, const std::vector<uint8_t>& fixed, int w, int h, int x, int y,
-                          float margin, bool to_edge, float window_min) {
+    bool find(const std::vector<float>& z, const std::vector<uint8_t>& fixed, int w, int h, int x, int y, float margin,
+              bool to_edge, float window_min, std::vector<int>& path) {
+        path.clear();
         const float bottom = z[y * w + x];
         const bool margin_reachable = window_min < bottom - margin;
         const bool lower_reachable = window_min < bottom;
-        if (!to_edge && !lower_reachable) return {};
+        if (!to_edge && !lower_reachable) return false;
         int fallback = -1;
         // The cheapest settled, unprotected cell on the window's edge (ties: the lower cell index).
         // Cells settle in order of cost, so it is the first one settled, unless a cell of the same
@@ -74,53 +86,59 @@ public:
         // grows past it.
         int edge = -1;
         nextSearch();
+        closeOutside(w, h, x, y);
+        // The eight neighbours in the ringed square and in the region, and the steps' lengths.
+        int neighbour[8], region_step[8];
+        float length[8];
+        for (int k = 0, dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                if (!dx && !dy) continue;
+                neighbour[k] = dy * stride_ + dx, region_step[k] = dy * w + dx;
+                length[k++] = dx && dy ? 1.41421356f : 1.0f;
+            }
         open_.clear();
-        const int centre = radius_ * side_ + radius_;
+        const int centre = cellAt(radius_, radius_);
         reach(centre, 0.0f);
         parent_[centre] = -1;
+        region_index_[centre] = y * w + x;
         push(entry(0.0f, centre));
         while (!open_.empty()) {
             const Entry top = pop();
             const float d = costOf(top);
             const int cell = cellOf(top);
             if (isDone(cell)) continue;
-            if (!lower_reachable && edge >= 0 && d > cost_[edge]) return trace(edge, w, x, y);
+            if (!lower_reachable && edge >= 0 && d > cost_[edge]) return trace(edge, path);
             done_[cell] = search_;
-            const int cx = cell % side_, cy = cell / side_;
-            const int gx = x + cx - radius_, gy = y + cy - radius_;
-            if (to_edge && isEdge(cx, cy) && !fixed[gy * w + gx] && (edge < 0 || (d == cost_[edge] && cell < edge)))
-                edge = cell;
-            if (z[gy * w + gx] < bottom - margin) return trace(cell, w, x, y);
-            if (fallback < 0 && z[gy * w + gx] < bottom) {
+            const int g = region_index_[cell];
+            if (to_edge && window_edge_[cell] && !fixed[g] && (edge < 0 || (d == cost_[edge] && cell < edge))) edge = cell;
+            if (z[g] < bottom - margin) return trace(cell, path);
+            if (fallback < 0 && z[g] < bottom) {
                 fallback = cell;
                 // Popped cells are final, so this is the path an exhausted search would return.
-                if (!margin_reachable) return trace(fallback, w, x, y);
+                if (!margin_reachable) return trace(fallback, path);
             }
-            if (cell != centre && fixed[gy * w + gx]) continue;  // may end a path, never carry one
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int nx = cx + dx, ny = cy + dy, rx = gx + dx, ry = gy + dy;
-                    if ((!dx && !dy) || nx < 0 || ny < 0 || nx >= side_ || ny >= side_ || rx < 0 || ry < 0 || rx >= w ||
-                        ry >= h)
-                        continue;
-                    const int n = ny * side_ + nx;
-                    if (isDone(n)) continue;
-                    const float step = (std::max(0.0f, z[ry * w + rx] - bottom) + 1e-3f) * (dx && dy ? 1.41421356f : 1.0f);
-                    if (reached_[n] != search_ || d + step < cost_[n]) {
-                        reach(n, d + step);
-                        parent_[n] = cell;
-                        push(entry(cost_[n], n));
-                    }
+            if (cell != centre && fixed[g]) continue;  // may end a path, never carry one
+            for (int k = 0; k < 8; ++k) {
+                const int n = cell + neighbour[k];
+                if (isDone(n)) continue;  // settled, on the ring or outside the region
+                const int gn = g + region_step[k];
+                const float step = (std::max(0.0f, z[gn] - bottom) + 1e-3f) * length[k];
+                if (reached_[n] != search_ || d + step < cost_[n]) {
+                    reach(n, d + step);
+                    parent_[n] = cell;
+                    region_index_[n] = gn;
+                    push(entry(cost_[n], n));
                 }
+            }
         }
-        if (fallback >= 0) return trace(fallback, w, x, y);
-        return trace(edge, w, x, y);  // empty when no edge cell (or no to_edge)
+        if (fallback >= 0) return trace(fallback, path);
+        return trace(edge, path);  // empty when no edge cell (or no to_edge)
     }
 
 private:
-    // A binary min-heap on (cost, window cell) packed into one integer: a cost is never negative,
-    // so its float bits order as the cost does, and the cell breaks ties. A cell is pushed again
-    // only with a lower cost, so no two entries are equal and the pop order is that of any heap.
+    // A binary min-heap on (cost, cell) packed into one integer: a cost is never negative, so its
+    // float bits order as the cost does, and the cell breaks ties. A cell is pushed again only with
+    // a lower cost, so no two entries are equal and the pop order is that of any heap.
     using Entry = uint64_t;
     static Entry entry(float cost, int cell) {
         uint32_t bits;
@@ -145,8 +163,10 @@ private:
         return e;
     }
 
+    int cellAt(int cx, int cy) const { return (cy + 1) * stride_ + cx + 1; }
+
     // Cells carry the number of the search that last reached or settled them, so a new search
-    // starts without clearing the window (at level 4, 65^2 cells per pit).
+    // starts without clearing the window (at level 4, 67^2 cells per pit).
     void nextSearch() {
         if (++search_ == 0) {  // wrapped: stale stamps could match again
             std::fill(reached_.begin(), reached_.end(), 0);
@@ -157,20 +177,33 @@ private:
     void reach(int cell, float cost) { cost_[cell] = cost, reached_[cell] = search_; }
     bool isDone(int cell) const { return done_[cell] == search_; }
 
-    bool isEdge(int cx, int cy) const { return cx == 0 || cy == 0 || cx == side_ - 1 || cy == side_ - 1; }
-
-    std::vector<int> trace(int cell, int w, int x, int y) const {
-        if (cell < 0) return {};
-        std::vector<int> path;
-        for (; cell >= 0; cell = parent_[cell]) path.push_back((y + cell / side_ - radius_) * w + (x + cell % side_ - radius_));
-        std::reverse(path.begin(), path.end());
-        return path;
+    // Marks as settled the ring and the window's cells outside the region (pixel (x, y) is the
+    // centre), so that no search enters them. Inside a synthesis plan the windows of the pits it
+    // searches lie inside the region; only the ring is marked then.
+    void closeOutside(int w, int h, int x, int y) {
+        for (int i = 0; i < stride_; ++i) {
+            done_[i] = done_[(stride_ - 1) * stride_ + i] = search_;
+            done_[i * stride_] = done_[i * stride_ + stride_ - 1] = search_;
+        }
+        if (x >= radius_ && y >= radius_ && x + radius_ < w && y + radius_ < h) return;
+        for (int cy = 0; cy < side_; ++cy)
+            for (int cx = 0; cx < side_; ++cx) {
+                const int gx = x + cx - radius_, gy = y + cy - radius_;
+                if (gx < 0 || gy < 0 || gx >= w || gy >= h) done_[cellAt(cx, cy)] = search_;
+            }
     }
 
-    int radius_, side_, cells_;
+    bool trace(int cell, std::vector<int>& path) const {
+        for (; cell >= 0; cell = parent_[cell]) path.push_back(region_index_[cell]);
+        std::reverse(path.begin(), path.end());
+        return !path.empty();
+    }
+
+    int radius_, side_, stride_, cells_;
     std::vector<float> cost_;
-    std::vector<int> parent_;
+    std::vector<int> parent_, region_index_;
     std::vector<uint32_t> reached_, done_;  // search_ when reached (cost_ valid) / settled
+    std::vector<uint8_t> window_edge_;       // 1 on the square's outer cells (DrainageInputs::carve_to_edge)
     uint32_t search_ = 0;
     std::vector<Entry> open_;
 };
@@ -335,34 +368,41 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
                     rowMinimum(row + zx0, zx1 - zx0 + 1, radius, padded, prefix, suffix,
                                &row_min[static_cast<size_t>(y) * w + zx0]);
             }
-            for (int x = 0; x < w; ++x) row_state[x].ceiling = INFINITY;
+            // Most ceilings are +inf already (finite only under the coarser level's carves); a
+            // line of the state left unwritten is not written back.
+            for (int x = 0; x < w; ++x)
+                if (row_state[x].ceiling != INFINITY) row_state[x].ceiling = INFINITY;
         }
     });
 
-    // Each worker searches every n-th row of pits and lists its carves (pixel, ceiling); the lowest
-    // carve of a pixel wins, whatever the order.
+    // Workers take the rows of pits in turn from a shared counter (pits and long searches cluster,
+    // so fixed shares of rows keep one worker waiting for the other) and list their carves (pixel,
+    // ceiling); the lowest carve of a pixel wins, whatever the order or the worker.
     struct Worker {
         std::vector<std::pair<int, float>> carves;
         BreachCounts counts;
     };
     std::vector<Worker> workers(static_cast<size_t>(threads));
+    std::atomic<int> next_row{y0};
     auto work = [&](int t) {
         Worker& out = workers[static_cast<size_t>(t)];
         PathSearch search(radius);
+        std::vector<int> path;
         std::vector<uint8_t> pit;
-        for (int y = y0 + t; y <= y1; y += threads) {
+        for (int y = next_row++; y <= y1; y = next_row++) {
             markPits(z, w, y, x0, x1, pit);
+            // About one pixel in a hundred is a pit: memchr skips the rest many bytes at a time.
             for (int x = x0; x <= x1; ++x) {
-                if (!pit[x]) continue;
+                const void* next_pit = std::memchr(&pit[x], 1, static_cast<size_t>(x1 - x + 1));
+                if (!next_pit) break;
+                x = static_cast<int>(static_cast<const uint8_t*>(next_pit) - pit.data());
                 ++out.counts.pits;
                 if (copiedFromClosedDepression(db, state[y * w + x])) continue;  // a real basin: keep it
                 const float window_min = windowMinimum(z, row_min, w, h, x, y, radius);
                 // A regional low of an exemplar with real basins is one of them: kept.
                 const bool to_edge = inputs.carve_to_edge &&
                                      !(window_min >= z[y * w + x] && copiedFromBasinExemplar(db, inputs.basin_exemplars, state[y * w + x]));
-                const std::vector<int> path =
-                    search.find(z, fixed, w, h, x, y, inputs.depth_margin, to_edge, window_min);
-                if (path.empty()) continue;
+                if (!search.find(z, fixed, w, h, x, y, inputs.depth_margin, to_edge, window_min, path)) continue;
                 ++out.counts.breached;
                 // A straight profile from the pit down to the lower pixel; cells already below it
                 // stay. A path to the window's edge (carve_to_edge) ends below the pit.
