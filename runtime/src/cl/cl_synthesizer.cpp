@@ -70,7 +70,8 @@ public:
         auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, defines);
         if (!program) return program.status();
         program_ = std::move(program.value());
-        for (auto [handle, name] : {std::pair{&init_, "init_level"}, std::pair{&upsample_, "upsample_jitter"},
+        for (auto [handle, name] : {std::pair{&init_cells_, "init_cells"}, std::pair{&init_, "init_level"},
+                                    std::pair{&upsample_, "upsample_jitter"},
                                     std::pair{&correct_, "correct"}, std::pair{&resolve_, "resolve"}}) {
             *handle->out() = clCreateKernel(program_.get(), name, &err);
             TS_CL_CHECK_NAMED(err, std::string("clCreateKernel(") + name + ")");
@@ -160,11 +161,12 @@ private:
     }
 
     // Grows a state buffer to hold `pixels` float4s (never shrinks, so tiles of one size reuse it).
-    Status reserve(BufferHandle& buffer, size_t& capacity, size_t pixels) {
+    // `pixels` float4s (a state's pixels, or two int4 per patch cell).
+    Status reserve(BufferHandle& buffer, size_t& capacity, size_t pixels, const char* what = "state") {
         if (capacity >= pixels && buffer) return Status::ok();
         cl_int err = CL_SUCCESS;
         *buffer.out() = clCreateBuffer(context_.get(), CL_MEM_READ_WRITE, pixels * sizeof(cl_float4), nullptr, &err);
-        TS_CL_CHECK_NAMED(err, "clCreateBuffer(state, " + std::to_string(pixels * sizeof(cl_float4)) + " bytes)");
+        TS_CL_CHECK_NAMED(err, std::string("clCreateBuffer(") + what + ", " + std::to_string(pixels * sizeof(cl_float4)) + " bytes)");
         capacity = pixels;
         return Status::ok();
     }
@@ -179,9 +181,22 @@ private:
         Status s = reserve(current_, current_capacity_, region.pixels());
         if (!s) return s;
         const DeviceLevel& d = levels_[level];
+        // The patch cells whose sites the region's pixels look at: their own and one around.
+        auto floorDiv = [](int v, int n) { return v >= 0 ? v / n : -((n - 1 - v) / n); };
+        const cl_int first_cx = floorDiv(region.x, kInitialPatchSize) - 1, first_cy = floorDiv(region.y, kInitialPatchSize) - 1;
+        const cl_int grid_w = floorDiv(region.x + region.width - 1, kInitialPatchSize) + 1 - first_cx + 1;
+        const cl_int grid_h = floorDiv(region.y + region.height - 1, kInitialPatchSize) + 1 - first_cy + 1;
+        s = reserve(cells_, cells_capacity_, 2 * static_cast<size_t>(grid_w) * grid_h, "patch cells");
+        if (!s) return s;
+        const cl_uint salt = core::levelSalt(seed, level, 0);
+        ArgSetter cell_args(init_cells_.get(), "init_cells");
+        cell_args(cells_.get())(first_cx)(first_cy)(grid_w)(grid_h)(d.rects.get())(d.cumulative_area.get())(
+            d.exemplar_count)(salt);
+        if (!cell_args.status()) return cell_args.status();
+        s = run(init_cells_.get(), grid_w, grid_h);
+        if (!s) return s;
         ArgSetter args(init_.get(), "init_level");
-        args(current_.get())(toArg(region))(d.rects.get())(d.cumulative_area.get())(d.exemplar_count)(
-            core::levelSalt(seed, level, 0));
+        args(current_.get())(toArg(region))(cells_.get())(first_cx)(first_cy)(grid_w);
         if (!args.status()) return args.status();
         return run(init_.get(), region.width, region.height);
     }
@@ -342,16 +357,17 @@ private:
     cl::ContextHandle context_;
     cl::QueueHandle queue_;
     cl::ProgramHandle program_;
-    KernelHandle init_, upsample_, correct_, resolve_;
+    KernelHandle init_cells_, init_, upsample_, correct_, resolve_;
     std::vector<DeviceLevel> levels_;
     BufferHandle current_, next_;
+    BufferHandle cells_;  // init_cells' output (two int4 per patch cell), reused
     BufferHandle placeholder_;
     BufferHandle blend_, target_sets_, prev_index_, prev_v_, coherence_;
     bool has_coherence_ = false;
     cl_int use_prev_ = 0;
     cl_int use_blend_ = 0, use_types_ = 0;
     cl_uint seed_salt_ = 0;
-    size_t current_capacity_ = 0, next_capacity_ = 0;
+    size_t current_capacity_ = 0, next_capacity_ = 0, cells_capacity_ = 0;
     size_t local_[2] = {32, 2};
     synth::DepthMargins depth_margins_;
     synth::BreachScratch breach_scratch_;
