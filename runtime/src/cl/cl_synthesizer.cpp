@@ -160,8 +160,8 @@ private:
         return Status::ok();
     }
 
-    // Grows a state buffer to hold `pixels` float4s (never shrinks, so tiles of one size reuse it).
-    // `pixels` float4s (a state's pixels, or two int4 per patch cell).
+    // Grows a buffer to hold `pixels` float4s (a state's pixels, or two int4 per patch cell; never
+    // shrinks, so tiles of one size reuse it).
     Status reserve(BufferHandle& buffer, size_t& capacity, size_t pixels, const char* what = "state") {
         if (capacity >= pixels && buffer) return Status::ok();
         cl_int err = CL_SUCCESS;
@@ -182,7 +182,7 @@ private:
         if (!s) return s;
         const DeviceLevel& d = levels_[level];
         // The patch cells whose sites the region's pixels look at: their own and one around.
-        auto floorDiv = [](int v, int n) { return v >= 0 ? v / n : -((n - 1 - v) / n); };
+        using synth::floorDiv;
         const cl_int first_cx = floorDiv(region.x, kInitialPatchSize) - 1, first_cy = floorDiv(region.y, kInitialPatchSize) - 1;
         const cl_int grid_w = floorDiv(region.x + region.width - 1, kInitialPatchSize) + 1 - first_cx + 1;
         const cl_int grid_h = floorDiv(region.y + region.height - 1, kInitialPatchSize) + 1 - first_cy + 1;

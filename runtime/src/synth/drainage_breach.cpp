@@ -51,8 +51,16 @@ void protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, PixelSta
 // them as the square's own row-major numbers do (the heap's and the edge's tie-breaks).
 class PathSearch {
 public:
-    explicit PathSearch(int radius)
-        : radius_(radius), side_(2 * radius + 1), stride_(side_ + 2), cells_(stride_ * stride_) {
+    // Windows of `radius` in regions `region_width` pixels wide.
+    PathSearch(int radius, int region_width)
+        : radius_(radius), side_(2 * radius + 1), stride_(side_ + 2), cells_(stride_ * stride_), w_(region_width) {
+        // The eight neighbours in the ringed square and in the region, and the steps' lengths.
+        for (int k = 0, dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                if (!dx && !dy) continue;
+                neighbour_[k] = dy * stride_ + dx, region_step_[k] = dy * w_ + dx;
+                length_[k++] = dx && dy ? 1.41421356f : 1.0f;
+            }
         cost_.resize(cells_);
         parent_.resize(cells_);
         region_index_.resize(cells_);
@@ -71,8 +79,9 @@ public:
     // result, only the work: when no pixel is `margin` lower, the whole window would be searched in
     // vain and the answer is the first lower pixel met, so the search stops there (at coarse levels
     // most searches are such, and they were most of the breach's time).
-    bool find(const std::vector<float>& z, const std::vector<uint8_t>& fixed, int w, int h, int x, int y, float margin,
+    bool find(const std::vector<float>& z, const std::vector<uint8_t>& fixed, int h, int x, int y, float margin,
               bool to_edge, float window_min, std::vector<int>& path) {
+        const int w = w_;
         path.clear();
         const float bottom = z[y * w + x];
         const bool margin_reachable = window_min < bottom - margin;
@@ -87,15 +96,6 @@ public:
         int edge = -1;
         nextSearch();
         closeOutside(w, h, x, y);
-        // The eight neighbours in the ringed square and in the region, and the steps' lengths.
-        int neighbour[8], region_step[8];
-        float length[8];
-        for (int k = 0, dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                if (!dx && !dy) continue;
-                neighbour[k] = dy * stride_ + dx, region_step[k] = dy * w + dx;
-                length[k++] = dx && dy ? 1.41421356f : 1.0f;
-            }
         open_.clear();
         const int centre = cellAt(radius_, radius_);
         reach(centre, 0.0f);
@@ -119,10 +119,10 @@ public:
             }
             if (cell != centre && fixed[g]) continue;  // may end a path, never carry one
             for (int k = 0; k < 8; ++k) {
-                const int n = cell + neighbour[k];
+                const int n = cell + neighbour_[k];
                 if (isDone(n)) continue;  // settled, on the ring or outside the region
-                const int gn = g + region_step[k];
-                const float step = (std::max(0.0f, z[gn] - bottom) + 1e-3f) * length[k];
+                const int gn = g + region_step_[k];
+                const float step = (std::max(0.0f, z[gn] - bottom) + 1e-3f) * length_[k];
                 if (reached_[n] != search_ || d + step < cost_[n]) {
                     reach(n, d + step);
                     parent_[n] = cell;
@@ -199,7 +199,9 @@ private:
         return !path.empty();
     }
 
-    int radius_, side_, stride_, cells_;
+    int radius_, side_, stride_, cells_, w_;
+    int neighbour_[8], region_step_[8];
+    float length_[8];
     std::vector<float> cost_;
     std::vector<int> parent_, region_index_;
     std::vector<uint32_t> reached_, done_;  // search_ when reached (cost_ valid) / settled
@@ -386,7 +388,7 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     std::atomic<int> next_row{y0};
     auto work = [&](int t) {
         Worker& out = workers[static_cast<size_t>(t)];
-        PathSearch search(radius);
+        PathSearch search(radius, w);
         std::vector<int> path;
         std::vector<uint8_t> pit;
         for (int y = next_row++; y <= y1; y = next_row++) {
@@ -402,7 +404,7 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
                 // A regional low of an exemplar with real basins is one of them: kept.
                 const bool to_edge = inputs.carve_to_edge &&
                                      !(window_min >= z[y * w + x] && copiedFromBasinExemplar(db, inputs.basin_exemplars, state[y * w + x]));
-                if (!search.find(z, fixed, w, h, x, y, inputs.depth_margin, to_edge, window_min, path)) continue;
+                if (!search.find(z, fixed, h, x, y, inputs.depth_margin, to_edge, window_min, path)) continue;
                 ++out.counts.breached;
                 // A straight profile from the pit down to the lower pixel; cells already below it
                 // stay. A path to the window's edge (carve_to_edge) ends below the pit.

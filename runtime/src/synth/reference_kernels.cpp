@@ -82,8 +82,6 @@ void takePrevious(const DatabaseLevel& db, const PassHistory& previous, size_t p
 
 namespace {
 
-int floorDiv(int v, int d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
-
 int wrapInto(int v, int n) {
     const int m = v % n;
     return m < 0 ? m + n : m;

@@ -46,5 +46,6 @@ SynthesisPlan planSynthesis(const PixelWindow& window, int output_level, int coa
 
 // Floor division for negative global coordinates.
 inline int floorDiv2(int v) { return v >> 1; }  // arithmetic shift = floor for two's complement
+inline int floorDiv(int v, int d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }  // d > 0
 
 }  // namespace terrasynth::synth
