@@ -13,6 +13,9 @@
 #ifndef INIT_PATCH_SIZE
 #define INIT_PATCH_SIZE 8
 #endif
+#ifndef SHARE_CELLS_PER_SIDE
+#define SHARE_CELLS_PER_SIDE 16
+#endif
 #ifndef SEEDS_PER_TYPE
 #define SEEDS_PER_TYPE 9
 #endif
@@ -79,58 +82,38 @@ TS_INLINE int wrap_into(int v, int n) {
     return m < 0 ? m + n : m;
 }
 
-// The point of [0, total) that picks a cell's exemplar (kInitialStrata in synthesizer.h): the
-// STRATA x STRATA cells of a block take the strata of [0, total) in a random order (ranked by their
-// hashes), all at one random offset per block (systematic sampling).
-TS_INLINE uint stratified_pick(int cell_x, int cell_y, uint salt, uint total) {
-    const int bx = floor_div(cell_x, STRATA), by = floor_div(cell_y, STRATA);
-    const int k = (cell_x - STRATA * bx) + STRATA * (cell_y - STRATA * by);
-    const uint key = ts_hash3(cell_x, cell_y, salt ^ 0x2u);
-    int rank = 0;
-    for (int j = 0; j < STRATA * STRATA; ++j) {
-        const uint other = ts_hash3(STRATA * bx + j % STRATA, STRATA * by + j / STRATA, salt ^ 0x2u);
-        rank += other < key || (other == key && j < k);
-    }
-    // rank + offset in units of 2^-24 strata; times total < 2^31 stays below 2^63.
-    const ulong position = ((ulong)rank << 24) | (ulong)(ts_hash3(bx, by, salt ^ 0x5u) >> 8);
-    return (uint)(position * (ulong)total / ((ulong)(STRATA * STRATA) << 24));
-}
-
 // Coarsest level (issue 16, synth/initial_patches.h): irregular patches of exemplar coordinates.
 // Every INIT_PATCH_SIZE^2 cell of the global grid holds one jittered site; a pixel belongs to the
-// nearest site of the 3x3 cells around it (Voronoi cells); each cell copies the exemplar around
-// one random interior position (exemplars picked by stratified_pick in proportion to
-// `cumulative_area`), wrapped around the interior where the cell reaches past it. A wrap is a
-// seam, which the correction passes repair from the exemplar; a mirror (used before) is a smooth
-// fold that matches its own neighbourhood, so the passes kept it: mirrored bands in the output and
-// a flat bias (docs/realism.md). V = 0, no drainage ceiling.
-// init_cells computes what a cell contributes once per cell (its site, exemplar and offset: 31
-// hashes per pixel when init_level did it for every pixel and each of its 3x3 cells; at the coarsest
-// level of a 1024^2 synthesis with drainage, 361^2 pixels, that was 9 ms); init_level then picks the
-// nearest of the 3x3 sites. Per cell of the grid [first_cx, first_cx + grid_w) x [first_cy, ...):
-// cells[2 i] = (site x, site y, offset x, offset y), cells[2 i + 1] = the exemplar's interior (x, y,
-// width, height) in the atlas.
-kernel void init_cells(global int4* cells, int first_cx, int first_cy, int grid_w, int grid_h,
-                       global const int4* rects, global const uint* cumulative_area, int exemplar_count, uint salt) {
+// nearest site of the 3x3 cells around it (Voronoi cells) and copies the exemplar around one random
+// interior position of that cell, wrapped around the interior where the cell reaches past it. A
+// wrap is a seam, which the correction passes repair from the exemplar; a mirror (used before) is a
+// smooth fold that matches its own neighbourhood, so the passes kept it: mirrored bands in the
+// output and a flat bias (docs/realism.md). Which exemplar a pixel copies is its share cell's
+// (`share_map`, from the host's shareCellExemplars: every block of block_side^2 pixels holds the
+// exemplars in proportion to their area). V = 0, no drainage ceiling.
+// init_cells computes each patch cell's site and offset hashes once (31 hashes per pixel when
+// init_level did it for every pixel and each of its 3x3 cells); per cell of the grid [first_cx,
+// first_cx + grid_w) x [first_cy, ...): cells[i] = (site x, site y, offset hash x, offset hash y).
+kernel void init_cells(global int4* cells, int first_cx, int first_cy, int grid_w, int grid_h, uint salt) {
     const int i = get_global_id(0), j = get_global_id(1);
     if (i >= grid_w || j >= grid_h) return;
     const int cell_x = first_cx + i, cell_y = first_cy + j;
     const int sx = cell_x * INIT_PATCH_SIZE + (int)(ts_hash3(cell_x, cell_y, salt) % (uint)INIT_PATCH_SIZE);
     const int sy = cell_y * INIT_PATCH_SIZE + (int)(ts_hash3(cell_x, cell_y, salt ^ 0x1u) % (uint)INIT_PATCH_SIZE);
-    const uint pick = stratified_pick(cell_x, cell_y, salt, cumulative_area[exemplar_count - 1]);
-    int e = 0;
-    while (e < exemplar_count - 1 && pick >= cumulative_area[e]) ++e;
-    const int4 r = rects[e];
-    const int iw = r.z - 2 * INTERIOR_MARGIN, ih = r.w - 2 * INTERIOR_MARGIN;
-    const int ox = (int)(ts_hash3(cell_x, cell_y, salt ^ 0x3u) % (uint)iw);
-    const int oy = (int)(ts_hash3(cell_x, cell_y, salt ^ 0x4u) % (uint)ih);
-    const int c = j * grid_w + i;
-    cells[2 * c] = (int4)(sx, sy, ox, oy);
-    cells[2 * c + 1] = (int4)(r.x + INTERIOR_MARGIN, r.y + INTERIOR_MARGIN, iw, ih);
+    cells[j * grid_w + i] = (int4)(sx, sy, as_int(ts_hash3(cell_x, cell_y, salt ^ 0x3u)),
+                                   as_int(ts_hash3(cell_x, cell_y, salt ^ 0x4u)));
 }
 
+// With admit_only (a finer level where exemplars enter, synth/initial_patches.h) only the pixels
+// whose share cell's exemplar is `entering` take a patch coordinate. They keep their ceiling and
+// their neighbourhood's mean height (mode 0, appearance_pca.cpp): V takes the mode-0 gap between
+// the old and the new coordinate, so the entering exemplar brings its detail onto the coarser
+// levels' terrain. With V kept as it was, its absolute heights came too: a 10-30 m exemplar's
+// valley floor entered a Himalayan region as a flat pit 3 km deep, with walls no pass removed.
 kernel void init_level(global float4* state, Region region, global const int4* cells, int first_cx, int first_cy,
-                       int grid_w) {
+                       int grid_w, global const uchar* share_map, int first_bx, int first_by, int blocks_w,
+                       int block_side, global const int4* rects, global const uchar* entering, int admit_only,
+                       global const ushort4* appearance, int width, float scale0) {
     const int lx = get_global_id(0), ly = get_global_id(1);
     if (lx >= region.width || ly >= region.height) return;
     const int gx = region.x + lx, gy = region.y + ly;
@@ -139,17 +122,32 @@ kernel void init_level(global float4* state, Region region, global const int4* c
     for (int j = -1; j <= 1; ++j)
         for (int i = -1; i <= 1; ++i) {
             const int c = (cy + j) * grid_w + (cx + i);
-            const int4 site = cells[2 * c];
+            const int4 site = cells[c];
             const int d = (site.x - gx) * (site.x - gx) + (site.y - gy) * (site.y - gy);
             if (d < best) {
                 best = d;
                 nearest = c;
             }
         }
-    const int4 site = cells[2 * nearest], interior = cells[2 * nearest + 1];
-    const int x = interior.x + wrap_into(site.z + gx - site.x, interior.z);
-    const int y = interior.y + wrap_into(site.w + gy - site.y, interior.w);
-    state[ly * region.width + lx] = (float4)((float)x, (float)y, 0.0f, INFINITY);
+    const int bx = floor_div(gx, block_side), by = floor_div(gy, block_side);
+    const int share_cell = block_side / SHARE_CELLS_PER_SIDE;
+    const int fx = (gx - bx * block_side) / share_cell, fy = (gy - by * block_side) / share_cell;
+    const int e = share_map[((by - first_by) * blocks_w + (bx - first_bx)) * SHARE_CELLS_PER_SIDE * SHARE_CELLS_PER_SIDE +
+                            fy * SHARE_CELLS_PER_SIDE + fx];
+    if (admit_only && !entering[e]) return;
+    const int4 r = rects[e], site = cells[nearest];
+    const int iw = r.z - 2 * INTERIOR_MARGIN, ih = r.w - 2 * INTERIOR_MARGIN;
+    const int ox = (int)(as_uint(site.z) % (uint)iw), oy = (int)(as_uint(site.w) % (uint)ih);
+    const int x = r.x + INTERIOR_MARGIN + wrap_into(ox + gx - site.x, iw);
+    const int y = r.y + INTERIOR_MARGIN + wrap_into(oy + gy - site.y, ih);
+    float v = 0.0f, ceiling = INFINITY;
+    if (admit_only) {
+        const float4 old = state[ly * region.width + lx];
+        const float gap = appearance_bilinear_q(appearance, width, old.x, old.y).x - (float)appearance[y * width + x].x;
+        v = old.z + gap * scale0;
+        ceiling = old.w;
+    }
+    state[ly * region.width + lx] = (float4)((float)x, (float)y, v, ceiling);
 }
 
 // Eq. 1-2: each parent pixel initialises its 2x2 children with jittered coordinates; they inherit its

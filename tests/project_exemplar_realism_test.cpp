@@ -189,39 +189,52 @@ TEST(ExemplarRealism, NoExemplarPixelIsStretchedOverItsNeighbours) {
     }
 }
 
-TEST(ExemplarRealism, ExemplarsShareTheOutputInProportionToTheirSize) {
-    // Issue 16: without type painting, each exemplar's share of the output within a factor 2 of its
-    // share of the database (before: orom_appalachians, the smoothest, took 82% and
-    // orom_himalaya-everest 0.4%; later, with independent draws for the initial patches, 5 of
-    // seeds 1-10 had an exemplar outside a factor 2). With the patches' exemplars drawn by systematic
-    // sampling (kInitialStrata), a 1024^2 synthesis still holds only about nine patches, so one
-    // exemplar of one seed in ten may fall just outside (seed 10: orom_rockies 9.8%, docs/realism.md):
-    // asserted are a factor 3 for all and a factor 2 for nine seeds of ten.
-    auto db = test::defaultDatabase();
-    ASSERT_TRUE(db);
+// Per seed, each exemplar's share of a 1024^2 synthesis at the origin (one share block) against its
+// share of the database; returns how many (exemplar, seed) pairs fall outside a factor 2, and
+// expects none outside a factor `worst`.
+namespace {
+
+int sharesOutsideFactor2(const std::shared_ptr<const ExemplarDatabase>& db, uint32_t seeds, double worst) {
     auto synthesizer = Synthesizer::create(db);
-    ASSERT_TRUE(synthesizer) << synthesizer.message();
+    EXPECT_TRUE(synthesizer) << synthesizer.message();
+    if (!synthesizer) return -1;
     std::vector<Heightfield> exemplars;
     for (int e = 0; e < static_cast<int>(db->exemplars.size()); ++e) exemplars.push_back(exemplarField(*db, e));
-    int seeds_within_2 = 0;
-    for (uint32_t seed = 1; seed <= 10; ++seed) {
+    int outside = 0;
+    for (uint32_t seed = 1; seed <= seeds; ++seed) {
         SynthesisParams params;
         params.seed = seed;
         auto out = synthesizer.value()->synthesize({0, 0, 1024, 1024}, params, 0, true);
-        ASSERT_TRUE(out) << out.message();
+        EXPECT_TRUE(out) << out.message();
+        if (!out) return -1;
         auto usage = measureSourceUsage(exemplars, out->source_x, out->source_y, out->source_exemplar);
-        ASSERT_TRUE(usage) << usage.message();
-        bool within_2 = true;
+        EXPECT_TRUE(usage) << usage.message();
+        if (!usage) return -1;
         std::printf("seed %2u:", seed);
         for (size_t e = 0; e < usage->size(); ++e) {
             const ExemplarUsage& u = (*usage)[e];
-            std::printf(" %s %.1f%% (database %.1f%%)", db->exemplars[e].name.c_str(), 100 * u.output_share, 100 * u.exemplar_share);
-            EXPECT_GE(u.output_share, u.exemplar_share / 3) << db->exemplars[e].name << " seed " << seed;
-            EXPECT_LE(u.output_share, u.exemplar_share * 3) << db->exemplars[e].name << " seed " << seed;
-            within_2 = within_2 && u.output_share >= u.exemplar_share / 2 && u.output_share <= u.exemplar_share * 2;
+            const double ratio = u.output_share / u.exemplar_share;
+            std::printf(" %s %.1f%% (database %.1f%%)%s", db->exemplars[e].name.c_str(), 100 * u.output_share,
+                        100 * u.exemplar_share, ratio < 0.5 || ratio > 2 ? " !" : "");
+            EXPECT_GE(ratio, 1 / worst) << db->exemplars[e].name << " seed " << seed;
+            EXPECT_LE(ratio, worst) << db->exemplars[e].name << " seed " << seed;
+            outside += ratio < 0.5 || ratio > 2;
         }
-        std::printf("%s\n", within_2 ? "" : " (outside a factor 2)");
-        seeds_within_2 += within_2;
+        std::printf("\n");
     }
-    EXPECT_GE(seeds_within_2, 9);
+    return outside;
+}
+
+}  // namespace
+
+TEST(ExemplarRealism, ExemplarsShareTheOutputInProportionToTheirSize) {
+    // Issue 16: without type painting, each exemplar's share of the output within a factor 2 of its
+    // share of the database. Before: orom_appalachians, the smoothest default exemplar, took 82%;
+    // with a draw per initial patch, a 1024^2 synthesis held about nine patches, and 30 of 51
+    // (exemplar, seed) pairs of the 17 shared exemplars fell outside. With share blocks
+    // (synth/initial_patches.h) the four default exemplars take 17-32% each over seeds 1-10, and of
+    // the 17, one pair of 51 falls outside (seed 2: orom_alaska at 0.37 of its share, eroded by the
+    // correction passes from the exact share it starts with; docs/realism.md, "Share blocks").
+    EXPECT_EQ(sharesOutsideFactor2(test::defaultDatabase(), 10, 2.0), 0);
+    EXPECT_LE(sharesOutsideFactor2(test::sharedDatabase(), 3, 3.0), 1);
 }

@@ -1,77 +1,153 @@
-// Issue 16: the exemplars of the coarsest level's initial patches are drawn by systematic sampling
-// over blocks of kInitialStrata^2 cells, so any block holds every exemplar in proportion to its
-// area to within one cell, whatever the seed (independent draws left a 1024^2 synthesis, about
-// nine cells, with one exemplar at 2.5% of the output and another at 56%).
+// Issue 16: the coarsest level's exemplars come from share blocks (synth/initial_patches.h): every
+// block of the world grid holds every exemplar in proportion to its area, each as one compact
+// region, whatever the seed (a draw per initial patch left a 1024^2 synthesis, about nine patches,
+// with at most nine exemplars of a 17-exemplar database).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "core/hash.h"
 #include "synth/initial_patches.h"
-#include "synth/reference_kernels.h"
-#include "terrasynth/synthesizer.h"
 #include "test_support.h"
 
 namespace terrasynth::synth {
 namespace {
 
-constexpr int kCells = kInitialStrata * kInitialStrata;
-
-TEST(InitialPatches, TheCellsOfABlockSampleTheRangeSystematically) {
-    // The nine picks of a block, sorted, are one offset in [0, total / 9) plus j * total / 9.
-    for (uint32_t total : {9u, 1000u, 648u * 648u, (1u << 31) - 1u})
-        for (uint32_t seed = 1; seed <= 8; ++seed) {
-            const uint32_t salt = core::levelSalt(seed, 4, 0);
-            for (int by = -4; by < 4; ++by)
-                for (int bx = -4; bx < 4; ++bx) {
-                    std::vector<uint32_t> picks;
-                    for (int j = 0; j < kCells; ++j) {
-                        const int cx = bx * kInitialStrata + j % kInitialStrata, cy = by * kInitialStrata + j / kInitialStrata;
-                        picks.push_back(stratifiedPick(cx, cy, salt, total));
-                        ASSERT_LT(picks.back(), total);
-                    }
-                    std::sort(picks.begin(), picks.end());
-                    const double step = static_cast<double>(total) / kCells;
-                    ASSERT_LT(picks[0], step + 1.0) << "block " << bx << "," << by << " total " << total;
-                    for (int j = 1; j < kCells; ++j)
-                        ASSERT_NEAR(static_cast<double>(picks[j]) - picks[0], j * step, 1.0)
-                            << "block " << bx << "," << by << " total " << total;
-                }
+// Cells of exemplar e in one block, as a 4-connected flood from the first: the run's size.
+int connectedCells(const uint8_t* cells, int e) {
+    std::vector<uint8_t> seen(kShareCellsPerBlock, 0);
+    std::vector<int> stack;
+    for (int c = 0; c < kShareCellsPerBlock && stack.empty(); ++c)
+        if (cells[c] == e) stack.push_back(c), seen[c] = 1;
+    int count = 0;
+    while (!stack.empty()) {
+        const int c = stack.back();
+        stack.pop_back();
+        ++count;
+        const int x = c % kShareCellsPerSide, y = c / kShareCellsPerSide;
+        const int next[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+        for (const auto& n : next) {
+            if (n[0] < 0 || n[1] < 0 || n[0] >= kShareCellsPerSide || n[1] >= kShareCellsPerSide) continue;
+            const int k = n[1] * kShareCellsPerSide + n[0];
+            if (!seen[k] && cells[k] == e) seen[k] = 1, stack.push_back(k);
         }
+    }
+    return count;
 }
 
-TEST(InitialPatches, EveryBlockHoldsTheDefaultExemplarsInProportionToTheirArea) {
-    // The four default exemplars are equally large: every block of nine cells holds two or three
-    // patches of each, and over many blocks the picks are not always the same cells (the order
-    // within a block is random).
+void expectProportionalCompactBlocks(const std::vector<uint64_t>& weights, uint32_t seeds) {
+    double total = 0;
+    for (uint64_t w : weights) total += static_cast<double>(w);
+    for (uint32_t seed = 1; seed <= seeds; ++seed) {
+        const uint32_t salt = core::levelSalt(seed, 4, 0);
+        const std::vector<uint8_t> map = shareCellExemplars(weights, std::vector<uint8_t>(weights.size(), 1), salt, -3, -2, 6, 5);
+        ASSERT_EQ(map.size(), 30u * kShareCellsPerBlock);
+        for (int b = 0; b < 30; ++b) {
+            const uint8_t* cells = &map[static_cast<size_t>(b) * kShareCellsPerBlock];
+            std::vector<int> count(weights.size(), 0);
+            for (int c = 0; c < kShareCellsPerBlock; ++c) {
+                ASSERT_LT(cells[c], weights.size());
+                ++count[cells[c]];
+            }
+            for (size_t e = 0; e < weights.size(); ++e) {
+                const double quota = kShareCellsPerBlock * static_cast<double>(weights[e]) / total;
+                EXPECT_GE(count[e], std::floor(quota) - 1e-9) << "seed " << seed << " block " << b << " exemplar " << e;
+                EXPECT_LE(count[e], std::ceil(quota) + 1e-9) << "seed " << seed << " block " << b << " exemplar " << e;
+                if (count[e] > 0) {
+                    EXPECT_EQ(connectedCells(cells, static_cast<int>(e)), count[e])
+                        << "exemplar " << e << " is not one region: seed " << seed << " block " << b;
+                }
+            }
+        }
+    }
+}
+
+TEST(ShareBlocks, EveryBlockHoldsEveryExemplarInProportionAsOneRegion) {
+    // Equal weights (the default project), the 17 shared exemplars' level-0 areas at 92.6 m (five
+    // hold under 2%), and weights large enough to need scaling; a zero weight (an exemplar never
+    // used) never appears.
+    expectProportionalCompactBlocks({648u * 648u, 648u * 648u, 648u * 648u, 648u * 648u}, 6);
+    expectProportionalCompactBlocks({110u * 110u, 78u * 78u, 648u * 648u, 648u * 648u, 648u * 648u, 648u * 648u,
+                                     648u * 648u, 648u * 648u, 648u * 648u, 648u * 648u, 648u * 648u, 648u * 648u,
+                                     648u * 648u, 1086u * 1086u, 97u * 97u, 68u * 68u, 90u * 90u},
+                                    6);
+    expectProportionalCompactBlocks({uint64_t(3) << 40, uint64_t(1) << 40, 0, uint64_t(5) << 38}, 6);
+}
+
+TEST(ShareBlocks, OrderAndShapeChangeWithTheBlockAndTheSeed) {
+    // The exemplar at a block's first cell and the shape of a region differ between blocks and
+    // seeds: the layout is no fixed pattern repeated over the world.
+    const std::vector<uint64_t> weights(4, 1000);
+    std::vector<int> corner(4, 0);
+    int blocks = 0;
+    for (uint32_t seed = 1; seed <= 10; ++seed) {
+        const std::vector<uint8_t> map = shareCellExemplars(weights, {1, 1, 1, 1}, shareSalt(seed), -4, -4, 8, 8);
+        for (size_t b = 0; b < 64; ++b, ++blocks) ++corner[map[b * kShareCellsPerBlock]];
+    }
+    for (int e = 0; e < 4; ++e) EXPECT_GT(corner[e], blocks / 8) << "exemplar " << e;  // about a quarter each
+}
+
+TEST(ShareBlocks, AWindowGetsTheSameCellsAsTheWholeGrid) {
+    const std::vector<uint64_t> weights = {5, 7, 11};
+    const uint32_t salt = core::levelSalt(9, 3, 0);
+    const std::vector<uint8_t> whole = shareCellExemplars(weights, {1, 1, 1}, salt, -2, -2, 5, 5);
+    const std::vector<uint8_t> part = shareCellExemplars(weights, {1, 1, 1}, salt, 1, 0, 2, 1);
+    for (int i = 0; i < 2; ++i)
+        for (int c = 0; c < kShareCellsPerBlock; ++c)
+            ASSERT_EQ(part[static_cast<size_t>(i) * kShareCellsPerBlock + c],
+                      whole[(static_cast<size_t>(2) * 5 + 3 + i) * kShareCellsPerBlock + c]);
+}
+
+TEST(ShareBlocks, ABlockIsA1024SquareOfLevelZero) {
+    EXPECT_EQ(shareBlockSide(0), 1024);
+    EXPECT_EQ(shareBlockSide(4), 64);
+    EXPECT_EQ(shareBlockSide(6), 16);
+    EXPECT_EQ(shareBlockSide(9), 16);
+}
+
+TEST(ShareBlocks, AnExemplarNotEnteredYetLendsItsCellsToItsNeighbourOnTheCurve) {
+    // Before a small exemplar enters, its cells show another exemplar; every shown exemplar is still
+    // one region; once it enters, it gets exactly those cells back and nothing else changes.
+    const std::vector<uint64_t> weights = {648u * 648u, 110u * 110u, 648u * 648u, 68u * 68u, 1086u * 1086u};
+    const std::vector<uint8_t> all = {1, 1, 1, 1, 1}, large = {1, 0, 1, 0, 1};
+    for (uint32_t seed = 1; seed <= 12; ++seed) {
+        const std::vector<uint8_t> before = shareCellExemplars(weights, large, shareSalt(seed), -2, -2, 4, 4);
+        const std::vector<uint8_t> after = shareCellExemplars(weights, all, shareSalt(seed), -2, -2, 4, 4);
+        for (size_t c = 0; c < after.size(); ++c) {
+            ASSERT_TRUE(large[before[c]]) << "cell " << c;
+            if (large[after[c]]) {
+                ASSERT_EQ(before[c], after[c]) << "cell " << c;
+            }
+        }
+        for (int b = 0; b < 16; ++b)
+            for (int e : {0, 2, 4}) {
+                const uint8_t* cells = &before[static_cast<size_t>(b) * kShareCellsPerBlock];
+                const int count = static_cast<int>(std::count(cells, cells + kShareCellsPerBlock, e));
+                ASSERT_GT(count, 0);
+                EXPECT_EQ(connectedCells(cells, e), count) << "seed " << seed << " block " << b << " exemplar " << e;
+            }
+    }
+}
+
+TEST(ShareBlocks, ExemplarsEnterWhereTheyAreLargeEnough) {
+    // The default exemplars are all large enough at the automatic coarsest level; at a level where
+    // none is, each enters there if it has interior pixels to copy.
     auto db = test::defaultDatabase();
     ASSERT_TRUE(db);
     const int level = automaticCoarsestLevel(*db);
-    const std::vector<uint32_t> cumulative = cumulativeInteriorAreas(db->levels[level]);
-    ASSERT_EQ(cumulative.size(), 4u);
-    std::vector<int> first_cell_counts(4, 0);
-    for (uint32_t seed = 1; seed <= 20; ++seed) {
-        const uint32_t salt = core::levelSalt(seed, level, 0);
-        for (int by = -3; by < 3; ++by)
-            for (int bx = -3; bx < 3; ++bx) {
-                std::vector<int> count(4, 0);
-                for (int j = 0; j < kCells; ++j) {
-                    const uint32_t pick = stratifiedPick(bx * kInitialStrata + j % kInitialStrata,
-                                                         by * kInitialStrata + j / kInitialStrata, salt, cumulative.back());
-                    size_t e = 0;
-                    while (e + 1 < cumulative.size() && pick >= cumulative[e]) ++e;
-                    ++count[e];
-                    if (j == 0) ++first_cell_counts[e];
-                }
-                for (int e = 0; e < 4; ++e) {
-                    EXPECT_GE(count[e], 2) << "seed " << seed << " block " << bx << "," << by;
-                    EXPECT_LE(count[e], 3) << "seed " << seed << " block " << bx << "," << by;
-                }
-            }
+    for (int entry : entryLevels(*db, level)) EXPECT_EQ(entry, level);
+    const int top = db->levelCount() - 1;
+    ASSERT_LT(db->levels[top].rects[0].width, kMinCoarsestSide);
+    const std::vector<int> entries = entryLevels(*db, top);
+    for (size_t e = 0; e < entries.size(); ++e) {
+        const AtlasRect& r = db->levels[top].rects[e];
+        EXPECT_EQ(entries[e], r.width > 2 * kInteriorMargin && r.height > 2 * kInteriorMargin ? top : entries[e] < 0 ? -1 : top - 1)
+            << "exemplar " << e;
+        EXPECT_GE(entries[e], top - 1);
     }
-    for (int e = 0; e < 4; ++e) EXPECT_GT(first_cell_counts[e], 720 / 8) << "exemplar " << e;  // of 720 blocks, about 180 each
 }
 
 }  // namespace

@@ -62,10 +62,6 @@ constexpr int kMinCoarsestSide = 40;
 // exemplar position each, wrapped around the exemplar's interior) instead of independent random
 // pixels.
 constexpr int kInitialPatchSize = 24;
-// The patches' exemplars are drawn by systematic sampling over blocks of kInitialStrata^2 cells:
-// every block holds the exemplars in proportion to their area (to within one cell each), which
-// independent draws did not over the nine or so cells of a 1024^2 synthesis (issue 16).
-constexpr int kInitialStrata = 3;
 
 // Drainage (issue 17; beyond the paper, whose s6 notes that pixel-based synthesis drains
 // unrealistically). Breach: after the correction passes of every level, each closed pit looks for the

@@ -26,8 +26,7 @@ struct RegionArg {
 RegionArg toArg(const synth::LevelRegion& r) { return {r.x, r.y, r.width, r.height}; }
 
 struct DeviceLevel {
-    BufferHandle appearance, candidates, exemplar, rects, heights, cumulative_area, types, type_seeds, seed_ranges;
-    cl_int exemplar_count = 0;
+    BufferHandle appearance, candidates, exemplar, rects, heights, types, type_seeds, seed_ranges;
     cl_int width = 0;
     cl_float4 offset{}, scale{};
 };
@@ -66,7 +65,7 @@ public:
                                     std::to_string(kPointToleranceSlope) + "f -DBLEND_SLOPE=" +
                                     std::to_string(kPointBlendSlope) + "f -DCOHERENT_WEIGHT=" +
                                     std::to_string(kCoherentWeight) + "f -DINIT_PATCH_SIZE=" +
-                                    std::to_string(kInitialPatchSize) + " -DSTRATA=" + std::to_string(kInitialStrata);
+                                    std::to_string(kInitialPatchSize) + " -DSHARE_CELLS_PER_SIDE=" + std::to_string(synth::kShareCellsPerSide);
         auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, defines);
         if (!program) return program.status();
         program_ = std::move(program.value());
@@ -120,8 +119,6 @@ private:
             DeviceLevel d;
             std::vector<cl_int4> rects;
             for (const AtlasRect& r : l.rects) rects.push_back({{r.x, r.y, r.width, r.height}});
-            const std::vector<uint32_t> cumulative = synth::cumulativeInteriorAreas(l);
-            if (cumulative.empty() || cumulative.back() == 0) return Status::error("database level without interior pixels");
             auto appearance = upload(l.appearance.data(), l.appearance.size() * sizeof(uint16_t));
             // The k = 2 table of s4 as one uint2 per atlas pixel: C_1(c) = c (Lefebvre & Hoppe 2005's
             // identity candidate) when c lies in its exemplar's interior, else none
@@ -135,12 +132,11 @@ private:
             auto exemplar = upload(l.exemplar.data(), l.exemplar.size());
             auto rect_buffer = upload(rects.data(), rects.size() * sizeof(cl_int4));
             auto heights = upload(l.height_m.data(), l.height_m.size() * sizeof(float));
-            auto cumulative_buffer = upload(cumulative.data(), cumulative.size() * sizeof(uint32_t));
             const synth::SeedTable table = synth::seedTable(l);
             auto types = upload(l.type.data(), l.type.size());
             auto type_seeds = upload(table.seeds.data(), table.seeds.size() * sizeof(uint32_t));
             auto seed_ranges = upload(table.ranges.data(), table.ranges.size() * sizeof(int32_t));
-            for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &cumulative_buffer, &types, &type_seeds,
+            for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &types, &type_seeds,
                             &seed_ranges})
                 if (!*r) return r->status();
             d.types = std::move(types.value());
@@ -151,8 +147,6 @@ private:
             d.exemplar = std::move(exemplar.value());
             d.rects = std::move(rect_buffer.value());
             d.heights = std::move(heights.value());
-            d.cumulative_area = std::move(cumulative_buffer.value());
-            d.exemplar_count = static_cast<cl_int>(cumulative.size());
             d.width = l.width;
             for (int m = 0; m < 4; ++m) d.offset.s[m] = l.appearance_offset[m], d.scale.s[m] = l.appearance_scale[m];
             levels_.push_back(std::move(d));
@@ -180,23 +174,40 @@ private:
     Status init(int level, const synth::LevelRegion& region, uint32_t seed) override {
         Status s = reserve(current_, current_capacity_, region.pixels());
         if (!s) return s;
+        entry_levels_ = synth::entryLevels(*db_, level);
+        if (std::count(entry_levels_.begin(), entry_levels_.end(), level) == 0)
+            return Status::error("database level " + std::to_string(level) + " has no exemplar with interior pixels");
+        return patchLevel(level, region, seed, synth::shareMap(*db_, entry_levels_, level, region.x, region.y,
+                                                                region.width, region.height, seed),
+                          false);
+    }
+
+    // Initial patches over current_ (synth/initial_patches.h): every pixel at the coarsest level, or
+    // (admit_only) the pixels of exemplars entering at a finer one.
+    Status patchLevel(int level, const synth::LevelRegion& region, uint32_t seed, const synth::ShareMap& map,
+                      bool admit_only) {
         const DeviceLevel& d = levels_[level];
         // The patch cells whose sites the region's pixels look at: their own and one around.
         using synth::floorDiv;
         const cl_int first_cx = floorDiv(region.x, kInitialPatchSize) - 1, first_cy = floorDiv(region.y, kInitialPatchSize) - 1;
         const cl_int grid_w = floorDiv(region.x + region.width - 1, kInitialPatchSize) + 1 - first_cx + 1;
         const cl_int grid_h = floorDiv(region.y + region.height - 1, kInitialPatchSize) + 1 - first_cy + 1;
-        s = reserve(cells_, cells_capacity_, 2 * static_cast<size_t>(grid_w) * grid_h, "patch cells");
+        Status s = reserve(cells_, cells_capacity_, static_cast<size_t>(grid_w) * grid_h, "patch cells");
         if (!s) return s;
         const cl_uint salt = core::levelSalt(seed, level, 0);
         ArgSetter cell_args(init_cells_.get(), "init_cells");
-        cell_args(cells_.get())(first_cx)(first_cy)(grid_w)(grid_h)(d.rects.get())(d.cumulative_area.get())(
-            d.exemplar_count)(salt);
+        cell_args(cells_.get())(first_cx)(first_cy)(grid_w)(grid_h)(salt);
         if (!cell_args.status()) return cell_args.status();
         s = run(init_cells_.get(), grid_w, grid_h);
         if (!s) return s;
+        auto share_buffer = upload(map.cells.data(), map.cells.size());
+        auto entering = upload(map.entering.data(), map.entering.size());
+        if (!share_buffer) return share_buffer.status();
+        if (!entering) return entering.status();
         ArgSetter args(init_.get(), "init_level");
-        args(current_.get())(toArg(region))(cells_.get())(first_cx)(first_cy)(grid_w);
+        args(current_.get())(toArg(region))(cells_.get())(first_cx)(first_cy)(grid_w)(share_buffer.value().get())(
+            cl_int{map.first_bx})(cl_int{map.first_by})(cl_int{map.blocks_w})(cl_int{map.block_side})(d.rects.get())(
+            entering.value().get())(cl_int{admit_only ? 1 : 0})(d.appearance.get())(d.width)(d.scale.s[0]);
         if (!args.status()) return args.status();
         return run(init_.get(), region.width, region.height);
     }
@@ -214,7 +225,12 @@ private:
         s = run(upsample_.get(), child.width, child.height);
         std::swap(current_, next_);
         std::swap(current_capacity_, next_capacity_);
-        return s;
+        if (!s) return s;
+        // Exemplars too small for the coarser levels enter here (synth/initial_patches.h).
+        if (std::count(entry_levels_.begin(), entry_levels_.end(), level) == 0) return Status::ok();
+        const synth::ShareMap map =
+            synth::shareMap(*db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed);
+        return patchLevel(level, child, seed, map, true);
     }
 
     Status beginLevel(int level, const synth::LevelRegion& region, const synth::LevelConstraints& constraints,
@@ -359,8 +375,9 @@ private:
     cl::ProgramHandle program_;
     KernelHandle init_cells_, init_, upsample_, correct_, resolve_;
     std::vector<DeviceLevel> levels_;
+    std::vector<int> entry_levels_;  // synth::entryLevels of the current synthesis
     BufferHandle current_, next_;
-    BufferHandle cells_;  // init_cells' output (two int4 per patch cell), reused
+    BufferHandle cells_;  // init_cells' output (one int4 per patch cell), reused
     BufferHandle placeholder_;
     BufferHandle blend_, target_sets_, prev_index_, prev_v_, coherence_;
     bool has_coherence_ = false;

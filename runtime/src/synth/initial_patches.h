@@ -30,9 +30,71 @@ constexpr int kCoarsestLevelExtraPasses = 2;
 // still kMinCoarsestSide pixels on their shorter side (0 when none is).
 int automaticCoarsestLevel(const ExemplarDatabase& db);
 
-// Per exemplar of a level, the running total of interior pixels (those at least kInteriorMargin
-// from its edges), scaled by a common power of two so the total stays below 2^31: patches pick
-// exemplars in proportion to their area. The last entry is the total (> 0 for a built database).
-std::vector<uint32_t> cumulativeInteriorAreas(const DatabaseLevel& level);
+// Share blocks: which exemplar each pixel starts from. The world grid is cut into blocks of
+// kShareBlockSide0 level-0 pixels (a 1024^2 synthesis at the origin is one block), each into
+// kShareCellsPerSide^2 share cells. Along a Hilbert curve over a block's cells (one of its eight
+// symmetries per block), the exemplars take consecutive runs, in a random order per block, of
+// lengths proportional to their level-0 area (systematic sampling at one random offset per block:
+// each gets the floor or the ceiling of its quota). So every block holds every exemplar in
+// proportion to its area, each as one compact region, whatever the seed. The layout is the same at
+// every level (in level-0 terms).
+//
+// An exemplar enters at the coarsest synthesized level if it is kMinCoarsestSide pixels on its
+// shorter side there; a smaller one enters at the coarsest level where it is kLateEntrySide pixels
+// (entryLevels). Until then its cells are its predecessor's along the curve; at its level,
+// upsampling replaces them by patches of it that keep the coarser levels' mean heights (V takes
+// the mode-0 gap; drainage ceilings kept), so it brings its detail onto the terrain around it.
+// Why so late: from a level where it is a few pixels, an exemplar has no structure to copy (its
+// candidates lie in its margin), and the correction passes of every later level move its region's
+// border; a small region loses more than it gains. The five 10-30 m exemplars of the shared set
+// (13-24 px at level 4 of a 92.6 m database) kept, of their share of a 17-exemplar synthesis over
+// six seeds: entering at 40 px 0.21-1.64x (15 of 30 runs outside 0.5-2x), at 80 px 0.33-1.69x
+// (3 of 30), at 160 px 0.47-1.91x (1 of 30); all at level 4, seeds 1-3, 0.09-2.91x (5 of 15)
+// (docs/realism.md, "Share blocks").
+// The price: such an exemplar gives its region the detail below a few hundred pixels of its own
+// size, not its broadest forms.
+//
+// Why share blocks: the exemplar used to be drawn per initial patch (by systematic sampling over
+// 3x3 cells), and a 1024^2 synthesis holds about nine patches: at most nine exemplars of a
+// 17-exemplar database appeared, and one of under 2% of the database was absent or five times over
+// its share whenever drawn (docs/realism.md, "Share blocks"). A patch's copy offset still comes from
+// its patch cell; the share cells only say from which exemplar.
+constexpr int kShareBlockSide0 = 1024;
+constexpr int kShareCellsPerSide = 16;
+constexpr int kShareCellsPerBlock = kShareCellsPerSide * kShareCellsPerSide;
+constexpr int kLateEntrySide = 4 * kMinCoarsestSide;
+
+// The side of a share block in pixels of `level` (>= 0): kShareBlockSide0 >> level, at least
+// kShareCellsPerSide (one pixel per share cell).
+int shareBlockSide(int level);
+
+// Per exemplar, the level it enters a synthesis whose coarsest level is `coarsest`: `coarsest` if
+// it is kMinCoarsestSide pixels on its shorter side there, else the coarsest level where it is
+// kLateEntrySide pixels (0 if none); when no exemplar is kMinCoarsestSide at `coarsest`, each enters
+// where it first has interior pixels. -1 for an exemplar without interior pixels at the level it
+// would enter (never used).
+std::vector<int> entryLevels(const ExemplarDatabase& db, int coarsest);
+
+// The exemplar of every share cell of the blocks [first_bx, first_bx + blocks_w) x [first_by,
+// first_by + blocks_h), block by block in row order, each block's kShareCellsPerBlock cells in row
+// order, at a level where exemplar e has entered iff entered[e]. `weights`: per exemplar, its
+// level-0 pixel count (0: never used; at most 256 exemplars); at least one with a weight has
+// entered. `salt`: shareSalt.
+// Pure function of its arguments (windowed determinism).
+std::vector<uint8_t> shareCellExemplars(const std::vector<uint64_t>& weights, const std::vector<uint8_t>& entered,
+                                        uint32_t salt, int first_bx, int first_by, int blocks_w, int blocks_h);
+
+// The share layout's salt: one per seed, the same at every level.
+uint32_t shareSalt(uint32_t seed);
+
+// What the kernel init_level (and referencePatches) needs at one level for one region;
+// `entry_levels` from entryLevels, with at least one exemplar entered at `level`.
+struct ShareMap {
+    int block_side = 0, first_bx = 0, first_by = 0, blocks_w = 0;
+    std::vector<uint8_t> cells;     // shareCellExemplars over the region's blocks
+    std::vector<uint8_t> entering;  // per exemplar: 1 if it enters at this level
+};
+ShareMap shareMap(const ExemplarDatabase& db, const std::vector<int>& entry_levels, int level, int x, int y, int width,
+                  int height, uint32_t seed);
 
 }  // namespace terrasynth::synth

@@ -89,30 +89,21 @@ int wrapInto(int v, int n) {
 
 }  // namespace
 
-uint32_t stratifiedPick(int cell_x, int cell_y, uint32_t salt, uint32_t total) {
-    const int strata = kInitialStrata;
-    const int bx = floorDiv(cell_x, strata), by = floorDiv(cell_y, strata);
-    const int k = (cell_x - strata * bx) + strata * (cell_y - strata * by);
-    const uint32_t key = hash3(cell_x, cell_y, salt ^ 0x2u);
-    int rank = 0;
-    for (int j = 0; j < strata * strata; ++j) {
-        const uint32_t other = hash3(strata * bx + j % strata, strata * by + j / strata, salt ^ 0x2u);
-        rank += other < key || (other == key && j < k);
-    }
-    const uint64_t position = (static_cast<uint64_t>(rank) << 24) | (hash3(bx, by, salt ^ 0x5u) >> 8);
-    return static_cast<uint32_t>(position * total / (static_cast<uint64_t>(strata * strata) << 24));
-}
-
-void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t seed, int level,
-                   std::vector<PixelState>& state) {
-    const std::vector<uint32_t> cumulative = cumulativeInteriorAreas(db);
-    TERRASYNTH_REQUIRE(!cumulative.empty() && cumulative.back() > 0, "database level without interior pixels");
-    state.assign(region.pixels(), PixelState{});
+void referencePatches(const DatabaseLevel& db, const ShareMap& map, const LevelRegion& region, uint32_t seed, int level,
+                      bool admit_only, std::vector<PixelState>& state) {
+    if (!admit_only) state.assign(region.pixels(), PixelState{0.0f, 0.0f, 0.0f, INFINITY});
+    TERRASYNTH_REQUIRE(state.size() == region.pixels(), "referencePatches: state does not match the region");
     const uint32_t salt = levelSalt(seed, level, 0);
     const int cell = kInitialPatchSize;
+    const int share_cell = map.block_side / kShareCellsPerSide;
     for (int ly = 0; ly < region.height; ++ly)
         for (int lx = 0; lx < region.width; ++lx) {
             const int gx = region.x + lx, gy = region.y + ly;
+            const int bx = floorDiv(gx, map.block_side), by = floorDiv(gy, map.block_side);
+            const int fx = (gx - bx * map.block_side) / share_cell, fy = (gy - by * map.block_side) / share_cell;
+            const size_t block = static_cast<size_t>(by - map.first_by) * map.blocks_w + (bx - map.first_bx);
+            const int e = map.cells[block * kShareCellsPerBlock + fy * kShareCellsPerSide + fx];
+            if (admit_only && !map.entering[e]) continue;
             const int cx = floorDiv(gx, cell), cy = floorDiv(gy, cell);
             int best = 0x7fffffff, site_x = 0, site_y = 0, cell_x = 0, cell_y = 0;
             for (int j = -1; j <= 1; ++j)
@@ -125,18 +116,20 @@ void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t 
                         site_x = sx, site_y = sy, cell_x = cx + i, cell_y = cy + j;
                     }
                 }
-            const uint32_t pick = stratifiedPick(cell_x, cell_y, salt, cumulative.back());
-            size_t e = 0;
-            while (e + 1 < cumulative.size() && pick >= cumulative[e]) ++e;
             const AtlasRect& r = db.rects[e];
             const int iw = r.width - 2 * kInteriorMargin, ih = r.height - 2 * kInteriorMargin;
             const int ox = static_cast<int>(hash3(cell_x, cell_y, salt ^ 0x3u) % static_cast<uint32_t>(iw));
             const int oy = static_cast<int>(hash3(cell_x, cell_y, salt ^ 0x4u) % static_cast<uint32_t>(ih));
+            const int x = r.x + kInteriorMargin + wrapInto(ox + gx - site_x, iw);
+            const int y = r.y + kInteriorMargin + wrapInto(oy + gy - site_y, ih);
             PixelState& s = state[static_cast<size_t>(ly) * region.width + lx];
-            s.x = static_cast<float>(r.x + kInteriorMargin + wrapInto(ox + gx - site_x, iw));
-            s.y = static_cast<float>(r.y + kInteriorMargin + wrapInto(oy + gy - site_y, ih));
-            s.v = 0.0f;
-            s.ceiling = INFINITY;  // no drainage ceiling
+            if (admit_only) {
+                // The neighbourhood's mean height (mode 0) stays; see init_level.
+                const float gap = appearanceBilinearQ(db, s.x, s.y).x - fetchAppearance(db, y * db.width + x).x;
+                s.v = s.v + gap * db.appearance_scale[0];
+            }
+            s.x = static_cast<float>(x);
+            s.y = static_cast<float>(y);
         }
 }
 

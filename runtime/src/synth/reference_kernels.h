@@ -7,6 +7,7 @@
 
 #include "synth/coherence_fields.h"
 #include "synth/constraint_fields.h"
+#include "synth/initial_patches.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/database.h"
 
@@ -35,14 +36,11 @@ struct PixelState {
 // coordinate and offset V; its ceiling is unchanged.
 void takePrevious(const DatabaseLevel& db, const PassHistory& previous, size_t pixel, PixelState& out);
 
-// The point of [0, total) that picks the exemplar of initial cell (cell_x, cell_y), the kernel's
-// stratified_pick: the kInitialStrata^2 cells of a block take one stratum of [0, total) each, in a
-// random order, at one random offset per block. `total` > 0.
-uint32_t stratifiedPick(int cell_x, int cell_y, uint32_t salt, uint32_t total);
-
-// Coarsest level: irregular patches of exemplar coordinates (synth/initial_patches.h), V = 0.
-void referenceInit(const DatabaseLevel& db, const LevelRegion& region, uint32_t seed, int level,
-                   std::vector<PixelState>& state);
+// Irregular patches of exemplar coordinates, each pixel from its share cell's exemplar
+// (synth/initial_patches.h): at the coarsest level every pixel (V = 0, no drainage ceiling); with
+// admit_only, at a finer level, the pixels of the exemplars entering there (V and ceiling kept).
+void referencePatches(const DatabaseLevel& db, const ShareMap& map, const LevelRegion& region, uint32_t seed, int level,
+                      bool admit_only, std::vector<PixelState>& state);
 
 // Eq. 1-2: every parent pixel initialises its 2x2 children, jittered by r*H(p).
 void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& child_db, const LevelRegion& parent_region,

@@ -1,8 +1,11 @@
 // The reference backend: runs the C++ reference kernels through the shared driver.
 #include "synth/reference_synthesizer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "synth/initial_patches.h"
 #include "synth/reference_kernels.h"
 #include "synth/synthesis_driver.h"
 
@@ -13,13 +16,22 @@ class ReferenceSteps final : public SynthesisSteps {
 public:
     ReferenceSteps(const ExemplarDatabase& db, DepthMargins& margins) : db_(db), margins_(margins) {}
     Status init(int level, const LevelRegion& region, uint32_t seed) override {
-        referenceInit(db_.levels[level], region, seed, level, current_);
+        entry_levels_ = entryLevels(db_, level);
+        if (std::count(entry_levels_.begin(), entry_levels_.end(), level) == 0)
+            return Status::error("database level " + std::to_string(level) + " has no exemplar with interior pixels");
+        referencePatches(db_.levels[level],
+                         shareMap(db_, entry_levels_, level, region.x, region.y, region.width, region.height, seed),
+                         region, seed, level, false, current_);
         return Status::ok();
     }
     Status upsample(int level, const LevelRegion& parent, const LevelRegion& child, float jitter, uint32_t seed) override {
         std::vector<PixelState> next;
         referenceUpsample(db_.levels[level + 1], db_.levels[level], parent, current_, child, jitter, seed, level, next);
         current_.swap(next);
+        if (std::count(entry_levels_.begin(), entry_levels_.end(), level) > 0)
+            referencePatches(db_.levels[level],
+                             shareMap(db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed),
+                             child, seed, level, true, current_);
         return Status::ok();
     }
     Status beginLevel(int level, const LevelRegion&, const LevelConstraints& constraints,
@@ -73,6 +85,7 @@ public:
 private:
     const ExemplarDatabase& db_;
     DepthMargins& margins_;
+    std::vector<int> entry_levels_;  // entryLevels of the current synthesis
     std::vector<PixelState> current_;
     CorrectionContext context_;
 };
