@@ -123,7 +123,7 @@ TEST(GameDrop, TwentySeededDropsComeToRestOnTheExactGround) {
 TEST(GameAutopilot, TwentyKilometresAtThreeHundredMetresAboveTheGround) {
     World& w = world();
     AutopilotSettings s;
-    s.heading_rad = 75.0 * M_PI / 180.0;
+    s.heading_rad = 105.0 * M_PI / 180.0;
     Autopilot pilot(s);
     Aircraft a;
     a.x = w.cx;
@@ -153,9 +153,11 @@ TEST(GameAutopilot, TwentyKilometresAtThreeHundredMetresAboveTheGround) {
     std::printf("autopilot: 20 km, above ground %.1f .. %.1f m, %.1f%% of the steps within 300 +- 100 m; decision median "
                 "%.2f ms, max %.2f ms\n", min_agl, max_agl, 100.0 * in_band / steps, decide_ms[decide_ms.size() / 2],
                 decide_ms.back());
-    // The track crosses an escarpment (550 m down over 450 m at 13.5 km) that the aircraft's 80 m/s^2
-    // and 250 m/s vertical limits cannot follow within 300 +- 100 m at 300 m/s: the planner dips
-    // before it and is high after it for a second or two. Elsewhere it holds the band.
+    // The course must be one the aircraft's 80 m/s^2 and 250 m/s vertical limits can follow at 300
+    // m/s: since the share blocks of issue 16 changed the default world, the old course (75 degrees)
+    // meets a mountain front (780 m up over 1.2 km at 11 km) that no trajectory crosses within
+    // 300 +- 250 m (exhaustive search over vertical-speed plans on the course's profile); at 105
+    // degrees a +-95 m corridor exists (docs/game.md).
     EXPECT_GE(in_band, 0.95 * steps);
     EXPECT_GT(min_agl, 150.0);
     EXPECT_LT(max_agl, 450.0);
