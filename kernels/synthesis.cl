@@ -117,6 +117,12 @@ kernel void init_level(global float4* state, Region region, global const int4* c
     const int lx = get_global_id(0), ly = get_global_id(1);
     if (lx >= region.width || ly >= region.height) return;
     const int gx = region.x + lx, gy = region.y + ly;
+    const int bx = floor_div(gx, block_side), by = floor_div(gy, block_side);
+    const int share_cell = block_side / SHARE_CELLS_PER_SIDE;
+    const int fx = (gx - bx * block_side) / share_cell, fy = (gy - by * block_side) / share_cell;
+    const int e = share_map[((by - first_by) * blocks_w + (bx - first_bx)) * SHARE_CELLS_PER_SIDE * SHARE_CELLS_PER_SIDE +
+                            fy * SHARE_CELLS_PER_SIDE + fx];
+    if (admit_only && !entering[e]) return;
     const int cx = floor_div(gx, INIT_PATCH_SIZE) - first_cx, cy = floor_div(gy, INIT_PATCH_SIZE) - first_cy;
     int best = 0x7fffffff, nearest = 0;
     for (int j = -1; j <= 1; ++j)
@@ -129,12 +135,6 @@ kernel void init_level(global float4* state, Region region, global const int4* c
                 nearest = c;
             }
         }
-    const int bx = floor_div(gx, block_side), by = floor_div(gy, block_side);
-    const int share_cell = block_side / SHARE_CELLS_PER_SIDE;
-    const int fx = (gx - bx * block_side) / share_cell, fy = (gy - by * block_side) / share_cell;
-    const int e = share_map[((by - first_by) * blocks_w + (bx - first_bx)) * SHARE_CELLS_PER_SIDE * SHARE_CELLS_PER_SIDE +
-                            fy * SHARE_CELLS_PER_SIDE + fx];
-    if (admit_only && !entering[e]) return;
     const int4 r = rects[e], site = cells[nearest];
     const int iw = r.z - 2 * INTERIOR_MARGIN, ih = r.w - 2 * INTERIOR_MARGIN;
     const int ox = (int)(as_uint(site.z) % (uint)iw), oy = (int)(as_uint(site.w) % (uint)ih);
