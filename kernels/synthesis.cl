@@ -13,8 +13,8 @@
 #ifndef INIT_PATCH_SIZE
 #define INIT_PATCH_SIZE 8
 #endif
-#ifndef SHARE_CELLS_PER_SIDE
-#define SHARE_CELLS_PER_SIDE 16
+#ifndef LAYOUT_WEIGHT
+#define LAYOUT_WEIGHT 1.0f
 #endif
 #ifndef SEEDS_PER_TYPE
 #define SEEDS_PER_TYPE 9
@@ -89,8 +89,8 @@ TS_INLINE int wrap_into(int v, int n) {
 // wrap is a seam, which the correction passes repair from the exemplar; a mirror (used before) is a
 // smooth fold that matches its own neighbourhood, so the passes kept it: mirrored bands in the
 // output and a flat bias (docs/realism.md). Which exemplar a pixel copies is its share cell's
-// (`share_map`, from the host's shareCellExemplars: every block of block_side^2 pixels holds the
-// exemplars in proportion to their area). V = 0, no drainage ceiling.
+// (`layout`, per region pixel, from the host's shareLayout: every block of 1024 level-0 pixels
+// holds the exemplars in proportion to their area). V = 0, no drainage ceiling.
 // init_cells computes each patch cell's site and offset hashes once (31 hashes per pixel when
 // init_level did it for every pixel and each of its 3x3 cells); per cell of the grid [first_cx,
 // first_cx + grid_w) x [first_cy, ...): cells[i] = (site x, site y, offset hash x, offset hash y).
@@ -111,17 +111,13 @@ kernel void init_cells(global int4* cells, int first_cx, int first_cy, int grid_
 // levels' terrain. With V kept as it was, its absolute heights came too: a 10-30 m exemplar's
 // valley floor entered a Himalayan region as a flat pit 3 km deep, with walls no pass removed.
 kernel void init_level(global float4* state, Region region, global const int4* cells, int first_cx, int first_cy,
-                       int grid_w, global const uchar* share_map, int first_bx, int first_by, int blocks_w,
-                       int block_side, global const int4* rects, global const uchar* entering, int admit_only,
+                       int grid_w, global const uchar* layout, global const int4* rects, global const uchar* entering,
+                       int admit_only,
                        global const ushort4* appearance, int width, float scale0) {
     const int lx = get_global_id(0), ly = get_global_id(1);
     if (lx >= region.width || ly >= region.height) return;
     const int gx = region.x + lx, gy = region.y + ly;
-    const int bx = floor_div(gx, block_side), by = floor_div(gy, block_side);
-    const int share_cell = block_side / SHARE_CELLS_PER_SIDE;
-    const int fx = (gx - bx * block_side) / share_cell, fy = (gy - by * block_side) / share_cell;
-    const int e = share_map[((by - first_by) * blocks_w + (bx - first_bx)) * SHARE_CELLS_PER_SIDE * SHARE_CELLS_PER_SIDE +
-                            fy * SHARE_CELLS_PER_SIDE + fx];
+    const int e = layout[ly * region.width + lx];
     if (admit_only && !entering[e]) return;
     const int cx = floor_div(gx, INIT_PATCH_SIZE) - first_cx, cy = floor_div(gy, INIT_PATCH_SIZE) - first_cy;
     int best = 0x7fffffff, nearest = 0;
@@ -218,6 +214,10 @@ TS_INLINE float phi_d(float x, float d, float s, float lambda) {
 // only reads pixels of other classes (and itself), so there are no races. Costs are evaluated in
 // quantised appearance units weighted by scale^2 per mode: the metric distance of eq. 7 without
 // dequantising every tap.
+TS_INLINE float layout_kappa(float kappa, global const uchar* atlas_exemplar, int q, int own_exemplar) {
+    return own_exemplar >= 0 && (int)atlas_exemplar[q] != own_exemplar ? kappa * LAYOUT_WEIGHT : kappa;
+}
+
 // Constraints (s5): `target_sets` (one uint per region pixel, 0 = any type) rejects candidates of
 // other types, with seeding from the per-type lists when all are rejected; `blend` holds, per region
 // pixel, the point and curve constraints' inverse-distance sums (sum b, sum b*h_t, sum b*d), which
@@ -227,7 +227,8 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                     global const uint* target_sets, int use_types, global const uchar* atlas_type,
                     global const uint* type_seeds, global const int2* seed_ranges, uint seed_salt,
                     global const float4* blend, int use_blend, global const float* heights, global const uint* prev_index,
-                    global const float* prev_v, global const uchar* coherence, int use_prev) {
+                    global const float* prev_v, global const uchar* coherence, int use_prev,
+                    global const uchar* atlas_exemplar, global const uchar* layout, int use_layout) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width - inset || ly >= region.height - inset) return;
     const int pixel = ly * region.width + lx;
@@ -252,6 +253,9 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                          (g0.w + g1.w + g2.w) * third);
     }
     const uint target = use_types ? target_sets[pixel] : 0u;
+    // The coarsest level holds the share layout (synth/initial_patches.h, kLayoutWeight): a
+    // candidate from another exemplar than the pixel's share cell costs LAYOUT_WEIGHT times more.
+    const int own_exemplar = use_layout ? (int)layout[pixel] : -1;
     float best_cost = INFINITY, best_h = 0.0f;
     int best_q = -1;
     bool keep_v = false;
@@ -262,7 +266,8 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         const int q = (int)prev_index[pixel];
         const uchar code = coherence[pixel];
         float h;
-        best_cost = candidate_cost(appearance, width, ns, q, weight, code == COHERENCE_FREE ? 1.0f : COHERENT_WEIGHT,
+        best_cost = candidate_cost(appearance, width, ns, q, weight,
+                                   layout_kappa(code == COHERENCE_FREE ? 1.0f : COHERENT_WEIGHT, atlas_exemplar, q, own_exemplar),
                                    INFINITY, &h);
         best_q = q;
         best_h = h;
@@ -293,7 +298,8 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                 if (q < 0) continue;
                 if (target != 0u && ((target >> atlas_type[q]) & 1u) == 0u) continue;  // s5.2 rejection
                 float h;
-                const float cost = candidate_cost(appearance, width, ns, q, weight, j == 0 ? 1.0f : 2.0f, best_cost, &h);
+                const float cost = candidate_cost(appearance, width, ns, q, weight,
+                                                  layout_kappa(j == 0 ? 1.0f : 2.0f, atlas_exemplar, q, own_exemplar), best_cost, &h);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_q = q;
@@ -312,7 +318,8 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             for (int k = 0; k < SEEDS_PER_TYPE && range.y > 0; ++k) {
                 const int q = (int)type_seeds[range.x + (int)(ts_hash3(gx * SEEDS_PER_TYPE + k, gy, seed_salt ^ (uint)t) % (uint)range.y)];
                 float h;
-                const float cost = candidate_cost(appearance, width, ns, q, weight, 2.0f, best_cost, &h);
+                const float cost = candidate_cost(appearance, width, ns, q, weight,
+                                                  layout_kappa(2.0f, atlas_exemplar, q, own_exemplar), best_cost, &h);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_q = q;

@@ -16,23 +16,25 @@
 namespace terrasynth::synth {
 namespace {
 
-// Cells of exemplar e in one block, as a 4-connected flood from the first: the run's size.
-int connectedCells(const uint8_t* cells, int e) {
+// The 4-connected regions of exemplar e's cells in one block.
+int regions(const uint8_t* cells, int e) {
     std::vector<uint8_t> seen(kShareCellsPerBlock, 0);
-    std::vector<int> stack;
-    for (int c = 0; c < kShareCellsPerBlock && stack.empty(); ++c)
-        if (cells[c] == e) stack.push_back(c), seen[c] = 1;
     int count = 0;
-    while (!stack.empty()) {
-        const int c = stack.back();
-        stack.pop_back();
+    for (int first = 0; first < kShareCellsPerBlock; ++first) {
+        if (cells[first] != e || seen[first]) continue;
         ++count;
-        const int x = c % kShareCellsPerSide, y = c / kShareCellsPerSide;
-        const int next[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
-        for (const auto& n : next) {
-            if (n[0] < 0 || n[1] < 0 || n[0] >= kShareCellsPerSide || n[1] >= kShareCellsPerSide) continue;
-            const int k = n[1] * kShareCellsPerSide + n[0];
-            if (!seen[k] && cells[k] == e) seen[k] = 1, stack.push_back(k);
+        std::vector<int> stack{first};
+        seen[first] = 1;
+        while (!stack.empty()) {
+            const int c = stack.back();
+            stack.pop_back();
+            const int x = c % kShareCellsPerSide, y = c / kShareCellsPerSide;
+            const int next[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+            for (const auto& n : next) {
+                if (n[0] < 0 || n[1] < 0 || n[0] >= kShareCellsPerSide || n[1] >= kShareCellsPerSide) continue;
+                const int k = n[1] * kShareCellsPerSide + n[0];
+                if (!seen[k] && cells[k] == e) seen[k] = 1, stack.push_back(k);
+            }
         }
     }
     return count;
@@ -48,6 +50,7 @@ void expectProportionalCompactBlocks(const std::vector<uint64_t>& weights, uint3
         for (int b = 0; b < 30; ++b) {
             const uint8_t* cells = &map[static_cast<size_t>(b) * kShareCellsPerBlock];
             std::vector<int> count(weights.size(), 0);
+            int split = 0;
             for (int c = 0; c < kShareCellsPerBlock; ++c) {
                 ASSERT_LT(cells[c], weights.size());
                 ++count[cells[c]];
@@ -56,16 +59,17 @@ void expectProportionalCompactBlocks(const std::vector<uint64_t>& weights, uint3
                 const double quota = kShareCellsPerBlock * static_cast<double>(weights[e]) / total;
                 EXPECT_GE(count[e], std::floor(quota) - 1e-9) << "seed " << seed << " block " << b << " exemplar " << e;
                 EXPECT_LE(count[e], std::ceil(quota) + 1e-9) << "seed " << seed << " block " << b << " exemplar " << e;
-                if (count[e] > 0) {
-                    EXPECT_EQ(connectedCells(cells, static_cast<int>(e)), count[e])
-                        << "exemplar " << e << " is not one region: seed " << seed << " block " << b;
-                }
+                // One region each, but for the run that wraps around the curve's end: at most two.
+                const int pieces = regions(cells, static_cast<int>(e));
+                EXPECT_LE(pieces, 2) << "exemplar " << e << ": seed " << seed << " block " << b;
+                split += pieces > 1;
             }
+            EXPECT_LE(split, 1) << "seed " << seed << " block " << b;
         }
     }
 }
 
-TEST(ShareBlocks, EveryBlockHoldsEveryExemplarInProportionAsOneRegion) {
+TEST(ShareBlocks, EveryBlockHoldsEveryExemplarInProportionAsCompactRegions) {
     // Equal weights (the default project), the 17 shared exemplars' level-0 areas at 92.6 m (five
     // hold under 2%), and weights large enough to need scaling; a zero weight (an exemplar never
     // used) never appears.
@@ -110,7 +114,8 @@ TEST(ShareBlocks, ABlockIsA1024SquareOfLevelZero) {
 
 TEST(ShareBlocks, AnExemplarNotEnteredYetLendsItsCellsToItsNeighbourOnTheCurve) {
     // Before a small exemplar enters, its cells show another exemplar; every shown exemplar is still
-    // one region; once it enters, it gets exactly those cells back and nothing else changes.
+    // one region (two where the curve wraps); once it enters, it gets exactly those cells back and
+    // nothing else changes.
     const std::vector<uint64_t> weights = {648u * 648u, 110u * 110u, 648u * 648u, 68u * 68u, 1086u * 1086u};
     const std::vector<uint8_t> all = {1, 1, 1, 1, 1}, large = {1, 0, 1, 0, 1};
     for (uint32_t seed = 1; seed <= 12; ++seed) {
@@ -127,7 +132,7 @@ TEST(ShareBlocks, AnExemplarNotEnteredYetLendsItsCellsToItsNeighbourOnTheCurve) 
                 const uint8_t* cells = &before[static_cast<size_t>(b) * kShareCellsPerBlock];
                 const int count = static_cast<int>(std::count(cells, cells + kShareCellsPerBlock, e));
                 ASSERT_GT(count, 0);
-                EXPECT_EQ(connectedCells(cells, e), count) << "seed " << seed << " block " << b << " exemplar " << e;
+                EXPECT_LE(regions(cells, e), 2) << "seed " << seed << " block " << b << " exemplar " << e;
             }
     }
 }

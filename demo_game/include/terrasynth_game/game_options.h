@@ -34,7 +34,7 @@ struct GameOptions {
     std::string terrain_options;              // --terrain-options: the plugin's option string
     int check_holes_every = 0;                // --check-holes N: count hole pixels every N frames
     bool replay = false;                      // --replay: after the flight, redraw its camera path settled
-    double heading_deg = 105.0;               // --heading: autopilot course, clockwise from north
+    double heading_deg = 75.0;                // --heading: autopilot course, clockwise from north
 
     bool deterministic() const { return fixed_dt_s > 0.0; }
 };

@@ -65,7 +65,7 @@ public:
                                     std::to_string(kPointToleranceSlope) + "f -DBLEND_SLOPE=" +
                                     std::to_string(kPointBlendSlope) + "f -DCOHERENT_WEIGHT=" +
                                     std::to_string(kCoherentWeight) + "f -DINIT_PATCH_SIZE=" +
-                                    std::to_string(kInitialPatchSize) + " -DSHARE_CELLS_PER_SIDE=" + std::to_string(synth::kShareCellsPerSide);
+                                    std::to_string(kInitialPatchSize) + " -DLAYOUT_WEIGHT=" + std::to_string(synth::kLayoutWeight) + "f";
         auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, defines);
         if (!program) return program.status();
         program_ = std::move(program.value());
@@ -177,15 +177,19 @@ private:
         entry_levels_ = synth::entryLevels(*db_, level);
         if (std::count(entry_levels_.begin(), entry_levels_.end(), level) == 0)
             return Status::error("database level " + std::to_string(level) + " has no exemplar with interior pixels");
-        return patchLevel(level, region, seed, synth::shareMap(*db_, entry_levels_, level, region.x, region.y,
-                                                                region.width, region.height, seed),
-                          false);
+        const synth::ShareLayout layout =
+            synth::shareLayout(*db_, entry_levels_, level, region.x, region.y, region.width, region.height, seed);
+        auto layout_buffer = upload(layout.exemplar.data(), layout.exemplar.size());
+        if (!layout_buffer) return layout_buffer.status();
+        layout_ = std::move(layout_buffer.value());
+        coarsest_ = level;
+        return patchLevel(level, region, seed, layout_.get(), layout.entering, false);
     }
 
     // Initial patches over current_ (synth/initial_patches.h): every pixel at the coarsest level, or
     // (admit_only) the pixels of exemplars entering at a finer one.
-    Status patchLevel(int level, const synth::LevelRegion& region, uint32_t seed, const synth::ShareMap& map,
-                      bool admit_only) {
+    Status patchLevel(int level, const synth::LevelRegion& region, uint32_t seed, cl_mem layout,
+                      const std::vector<uint8_t>& entering_flags, bool admit_only) {
         const DeviceLevel& d = levels_[level];
         // The patch cells whose sites the region's pixels look at: their own and one around.
         using synth::floorDiv;
@@ -200,13 +204,10 @@ private:
         if (!cell_args.status()) return cell_args.status();
         s = run(init_cells_.get(), grid_w, grid_h);
         if (!s) return s;
-        auto share_buffer = upload(map.cells.data(), map.cells.size());
-        auto entering = upload(map.entering.data(), map.entering.size());
-        if (!share_buffer) return share_buffer.status();
+        auto entering = upload(entering_flags.data(), entering_flags.size());
         if (!entering) return entering.status();
         ArgSetter args(init_.get(), "init_level");
-        args(current_.get())(toArg(region))(cells_.get())(first_cx)(first_cy)(grid_w)(share_buffer.value().get())(
-            cl_int{map.first_bx})(cl_int{map.first_by})(cl_int{map.blocks_w})(cl_int{map.block_side})(d.rects.get())(
+        args(current_.get())(toArg(region))(cells_.get())(first_cx)(first_cy)(grid_w)(layout)(d.rects.get())(
             entering.value().get())(cl_int{admit_only ? 1 : 0})(d.appearance.get())(d.width)(d.scale.s[0]);
         if (!args.status()) return args.status();
         return run(init_.get(), region.width, region.height);
@@ -228,9 +229,11 @@ private:
         if (!s) return s;
         // Exemplars too small for the coarser levels enter here (synth/initial_patches.h).
         if (std::count(entry_levels_.begin(), entry_levels_.end(), level) == 0) return Status::ok();
-        const synth::ShareMap map =
-            synth::shareMap(*db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed);
-        return patchLevel(level, child, seed, map, true);
+        const synth::ShareLayout layout =
+            synth::shareLayout(*db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed);
+        auto layout_buffer = upload(layout.exemplar.data(), layout.exemplar.size());
+        if (!layout_buffer) return layout_buffer.status();
+        return patchLevel(level, child, seed, layout_buffer.value().get(), layout.entering, true);
     }
 
     Status beginLevel(int level, const synth::LevelRegion& region, const synth::LevelConstraints& constraints,
@@ -288,7 +291,7 @@ private:
         args(current_.get())(toArg(region))(first_x)(first_y)(cl_int(inset))(d.appearance.get())(d.candidates.get())(
             d.width)(d.scale)(target_sets_.get())(use_types_)(d.types.get())(
             d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_)(d.heights.get())(prev_index_.get())(
-            prev_v_.get())(coherence_.get())(use_prev_);
+            prev_v_.get())(coherence_.get())(use_prev_)(d.exemplar.get())(layout_.get())(cl_int{level == coarsest_ ? 1 : 0});
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);
     }
@@ -376,6 +379,8 @@ private:
     KernelHandle init_cells_, init_, upsample_, correct_, resolve_;
     std::vector<DeviceLevel> levels_;
     std::vector<int> entry_levels_;  // synth::entryLevels of the current synthesis
+    int coarsest_ = -1;              // its coarsest level, whose passes hold layout_
+    BufferHandle layout_;            // synth::shareLayout of the coarsest level's region
     BufferHandle current_, next_;
     BufferHandle cells_;  // init_cells' output (one int4 per patch cell), reused
     BufferHandle placeholder_;

@@ -92,6 +92,10 @@ void fillBlock(const std::vector<uint64_t>& weights, const std::vector<uint8_t>&
         if (shown[k] < 0) shown[k] = entered[order[k].second] ? order[k].second : shown[k + 1];
     const uint64_t offset = core::hash3(bx, by, salt ^ 0x5u) >> 8;  // in 2^-24 steps
     const uint32_t symmetry = core::hash3(bx, by, salt ^ 0x7u);
+    // The runs start at a random step of the curve (wrapping around its end): runs laid from its
+    // start split the block on its quadrants (equal exemplars took one 512 px square each, with
+    // straight borders repeating every 1024 px).
+    const int rotation = static_cast<int>(core::hash3(bx, by, salt ^ 0x8u) % kShareCellsPerBlock);
     size_t k = 0;
     uint64_t run_end = weights[order[0].second] >> shift;
     for (int step = 0; step < kShareCellsPerBlock; ++step) {
@@ -99,7 +103,7 @@ void fillBlock(const std::vector<uint64_t>& weights, const std::vector<uint8_t>&
         const uint64_t point = ((static_cast<uint64_t>(step) << 24) | offset) * total / (uint64_t(kShareCellsPerBlock) << 24);
         while (point >= run_end && k + 1 < order.size()) run_end += weights[order[++k].second] >> shift;
         int x = 0, y = 0;
-        hilbertCell(kShareCellsPerSide, step, x, y);
+        hilbertCell(kShareCellsPerSide, (step + rotation) % kShareCellsPerBlock, x, y);
         if (symmetry & 1u) x = kShareCellsPerSide - 1 - x;
         if (symmetry & 2u) y = kShareCellsPerSide - 1 - y;
         if (symmetry & 4u) std::swap(x, y);
@@ -133,24 +137,33 @@ std::vector<uint8_t> shareCellExemplars(const std::vector<uint64_t>& weights, co
     return cells;
 }
 
-ShareMap shareMap(const ExemplarDatabase& db, const std::vector<int>& entry_levels, int level, int x, int y, int width,
-                  int height, uint32_t seed) {
-    ShareMap map;
-    map.block_side = shareBlockSide(level);
-    map.first_bx = floorDiv(x, map.block_side);
-    map.first_by = floorDiv(y, map.block_side);
-    map.blocks_w = floorDiv(x + width - 1, map.block_side) + 1 - map.first_bx;
-    const int blocks_h = floorDiv(y + height - 1, map.block_side) + 1 - map.first_by;
+ShareLayout shareLayout(const ExemplarDatabase& db, const std::vector<int>& entry_levels, int level, int x, int y,
+                        int width, int height, uint32_t seed) {
+    const int block_side = shareBlockSide(level), share_cell = block_side / kShareCellsPerSide;
+    const int first_bx = floorDiv(x, block_side), first_by = floorDiv(y, block_side);
+    const int blocks_w = floorDiv(x + width - 1, block_side) + 1 - first_bx;
+    const int blocks_h = floorDiv(y + height - 1, block_side) + 1 - first_by;
     std::vector<uint64_t> weights;
     std::vector<uint8_t> entered;
+    ShareLayout layout;
     for (size_t e = 0; e < entry_levels.size(); ++e) {
         const AtlasRect& r = db.levels[0].rects[e];
         weights.push_back(entry_levels[e] < 0 ? 0 : static_cast<uint64_t>(r.width) * static_cast<uint64_t>(r.height));
         entered.push_back(entry_levels[e] >= level);
-        map.entering.push_back(entry_levels[e] == level);
+        layout.entering.push_back(entry_levels[e] == level);
     }
-    map.cells = shareCellExemplars(weights, entered, shareSalt(seed), map.first_bx, map.first_by, map.blocks_w, blocks_h);
-    return map;
+    const std::vector<uint8_t> cells =
+        shareCellExemplars(weights, entered, shareSalt(seed), first_bx, first_by, blocks_w, blocks_h);
+    layout.exemplar.resize(static_cast<size_t>(width) * height);
+    for (int ly = 0; ly < height; ++ly)
+        for (int lx = 0; lx < width; ++lx) {
+            const int gx = x + lx, gy = y + ly;
+            const int bx = floorDiv(gx, block_side), by = floorDiv(gy, block_side);
+            const int fx = (gx - bx * block_side) / share_cell, fy = (gy - by * block_side) / share_cell;
+            const size_t block = static_cast<size_t>(by - first_by) * blocks_w + (bx - first_bx);
+            layout.exemplar[static_cast<size_t>(ly) * width + lx] = cells[block * kShareCellsPerBlock + fy * kShareCellsPerSide + fx];
+        }
+    return layout;
 }
 
 }  // namespace terrasynth::synth

@@ -89,21 +89,18 @@ int wrapInto(int v, int n) {
 
 }  // namespace
 
-void referencePatches(const DatabaseLevel& db, const ShareMap& map, const LevelRegion& region, uint32_t seed, int level,
-                      bool admit_only, std::vector<PixelState>& state) {
+void referencePatches(const DatabaseLevel& db, const ShareLayout& layout, const LevelRegion& region, uint32_t seed,
+                      int level, bool admit_only, std::vector<PixelState>& state) {
     if (!admit_only) state.assign(region.pixels(), PixelState{0.0f, 0.0f, 0.0f, INFINITY});
-    TERRASYNTH_REQUIRE(state.size() == region.pixels(), "referencePatches: state does not match the region");
+    TERRASYNTH_REQUIRE(state.size() == region.pixels() && layout.exemplar.size() == region.pixels(),
+                       "referencePatches: state or layout does not match the region");
     const uint32_t salt = levelSalt(seed, level, 0);
     const int cell = kInitialPatchSize;
-    const int share_cell = map.block_side / kShareCellsPerSide;
     for (int ly = 0; ly < region.height; ++ly)
         for (int lx = 0; lx < region.width; ++lx) {
             const int gx = region.x + lx, gy = region.y + ly;
-            const int bx = floorDiv(gx, map.block_side), by = floorDiv(gy, map.block_side);
-            const int fx = (gx - bx * map.block_side) / share_cell, fy = (gy - by * map.block_side) / share_cell;
-            const size_t block = static_cast<size_t>(by - map.first_by) * map.blocks_w + (bx - map.first_bx);
-            const int e = map.cells[block * kShareCellsPerBlock + fy * kShareCellsPerSide + fx];
-            if (admit_only && !map.entering[e]) continue;
+            const int e = layout.exemplar[static_cast<size_t>(ly) * region.width + lx];
+            if (admit_only && !layout.entering[e]) continue;
             const int cx = floorDiv(gx, cell), cy = floorDiv(gy, cell);
             int best = 0x7fffffff, site_x = 0, site_y = 0, cell_x = 0, cell_y = 0;
             for (int j = -1; j <= 1; ++j)
@@ -259,6 +256,10 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
             }
             const size_t pixel = static_cast<size_t>(ly) * region.width + lx;
             const uint32_t target = constraints.target_sets.empty() ? 0u : constraints.target_sets[pixel];
+            // The coarsest level holds the share layout (kernel correct, layout_kappa).
+            auto layoutKappa = [&](float kappa, int q) {
+                return !context.layout.empty() && db.exemplar[q] != context.layout[pixel] ? kappa * kLayoutWeight : kappa;
+            };
             float best_cost = INFINITY, best_h = 0.0f;
             int best_q = -1;
             bool keep_v = false;
@@ -274,7 +275,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 // (s5.2 rejects every other candidate; without this an edit could never repaint).
                 if (target == 0u || ((target >> db.type[q]) & 1u) != 0u) {
                     float h;
-                    best_cost = candidateCost(db, ns, q, weight, code == Coherence::Free ? 1.0f : kCoherentWeight, &h);
+                    best_cost = candidateCost(db, ns, q, weight, layoutKappa(code == Coherence::Free ? 1.0f : kCoherentWeight, q), &h);
                     best_q = q;
                     best_h = h;
                     keep_v = code != Coherence::Free;  // coherent pixels keep their offset, so it cannot drift
@@ -296,7 +297,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                         if (q < 0) continue;
                         if (target != 0u && ((target >> db.type[q]) & 1u) == 0u) continue;  // s5.2 rejection
                         float h;
-                        const float cost = candidateCost(db, ns, q, weight, j == 0 ? 1.0f : 2.0f, &h);
+                        const float cost = candidateCost(db, ns, q, weight, layoutKappa(j == 0 ? 1.0f : 2.0f, q), &h);
                         if (cost < best_cost) {
                             best_cost = cost;
                             best_q = q;
@@ -316,7 +317,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                         const uint32_t pick = hash3(gx * kSeedsPerType + k, gy, context.seed_salt ^ static_cast<uint32_t>(t));
                         const int q = static_cast<int>(context.seeds.seeds[offset + static_cast<int>(pick % static_cast<uint32_t>(count))]);
                         float h;
-                        const float cost = candidateCost(db, ns, q, weight, 2.0f, &h);
+                        const float cost = candidateCost(db, ns, q, weight, layoutKappa(2.0f, q), &h);
                         if (cost < best_cost) {
                             best_cost = cost;
                             best_q = q;

@@ -39,8 +39,8 @@ void takePrevious(const DatabaseLevel& db, const PassHistory& previous, size_t p
 // Irregular patches of exemplar coordinates, each pixel from its share cell's exemplar
 // (synth/initial_patches.h): at the coarsest level every pixel (V = 0, no drainage ceiling); with
 // admit_only, at a finer level, the pixels of the exemplars entering there (V and ceiling kept).
-void referencePatches(const DatabaseLevel& db, const ShareMap& map, const LevelRegion& region, uint32_t seed, int level,
-                      bool admit_only, std::vector<PixelState>& state);
+void referencePatches(const DatabaseLevel& db, const ShareLayout& layout, const LevelRegion& region, uint32_t seed,
+                      int level, bool admit_only, std::vector<PixelState>& state);
 
 // Eq. 1-2: every parent pixel initialises its 2x2 children, jittered by r*H(p).
 void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& child_db, const LevelRegion& parent_region,
@@ -56,6 +56,7 @@ struct CorrectionContext {
     SeedTable seeds;
     std::vector<uint8_t> coherence;  // W^i codes per region pixel (empty: no previous result)
     PassHistory previous;            // the previous result of the current pass (s5.3)
+    std::vector<uint8_t> layout;     // the coarsest level's shareLayout exemplars per region pixel (else empty)
 };
 
 // Eq. 3-7 (and the constraints of s5.1-5.2) for the pixels of one parity class, in place.

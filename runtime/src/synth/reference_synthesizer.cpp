@@ -19,9 +19,10 @@ public:
         entry_levels_ = entryLevels(db_, level);
         if (std::count(entry_levels_.begin(), entry_levels_.end(), level) == 0)
             return Status::error("database level " + std::to_string(level) + " has no exemplar with interior pixels");
-        referencePatches(db_.levels[level],
-                         shareMap(db_, entry_levels_, level, region.x, region.y, region.width, region.height, seed),
-                         region, seed, level, false, current_);
+        const ShareLayout layout = shareLayout(db_, entry_levels_, level, region.x, region.y, region.width, region.height, seed);
+        layout_ = layout.exemplar;
+        coarsest_ = level;
+        referencePatches(db_.levels[level], layout, region, seed, level, false, current_);
         return Status::ok();
     }
     Status upsample(int level, const LevelRegion& parent, const LevelRegion& child, float jitter, uint32_t seed) override {
@@ -30,7 +31,7 @@ public:
         current_.swap(next);
         if (std::count(entry_levels_.begin(), entry_levels_.end(), level) > 0)
             referencePatches(db_.levels[level],
-                             shareMap(db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed),
+                             shareLayout(db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed),
                              child, seed, level, true, current_);
         return Status::ok();
     }
@@ -42,6 +43,7 @@ public:
         context_.seed_salt = seedingSalt(seed, level);
         context_.constraints = constraints;
         context_.seeds = seedTable(db_.levels[level]);
+        context_.layout = level == coarsest_ ? layout_ : std::vector<uint8_t>{};
         return Status::ok();
     }
     Status beginPass(int, const LevelRegion&, const PassHistory& previous) override {
@@ -86,6 +88,8 @@ private:
     const ExemplarDatabase& db_;
     DepthMargins& margins_;
     std::vector<int> entry_levels_;  // entryLevels of the current synthesis
+    int coarsest_ = -1;              // its coarsest level, whose passes hold layout_
+    std::vector<uint8_t> layout_;    // shareLayout exemplars of the coarsest level's region
     std::vector<PixelState> current_;
     CorrectionContext context_;
 };
