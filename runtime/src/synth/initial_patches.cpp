@@ -81,8 +81,9 @@ void fillBlock(const std::vector<uint64_t>& weights, const std::vector<uint8_t>&
     for (size_t e = 0; e < weights.size(); ++e)
         if (weights[e] > 0) order.push_back({core::hash3(bx, by, salt ^ (0x10u + static_cast<uint32_t>(e))), static_cast<int>(e)});
     std::sort(order.begin(), order.end());
-    // A run of an exemplar that has not entered yet shows the entered exemplar before it along the
-    // curve (after it for the first runs), so every entered exemplar's cells stay one run.
+    // A run of an exemplar that has not entered yet shows the entered exemplar before it in the
+    // order (after it for the first runs), so every entered exemplar's cells stay one run of the
+    // curve (split in two only where the curve wraps).
     std::vector<int> shown(order.size(), -1);
     for (size_t k = 0, last = SIZE_MAX; k < order.size(); ++k) {
         if (entered[order[k].second]) last = k;
