@@ -210,14 +210,16 @@ TS_INLINE float phi_d(float x, float d, float s, float lambda) {
     return -b * x * x * x;
 }
 
-// Corrects the pixels of one parity class (one of the 4 subpasses), in place: a pixel of the class
-// only reads pixels of other classes (and itself), so there are no races. Costs are evaluated in
-// quantised appearance units weighted by scale^2 per mode: the metric distance of eq. 7 without
-// dequantising every tap.
+// kappa of a candidate at the coarsest level, which holds the share layout (kLayoutWeight in
+// synth/initial_patches.h); own_exemplar < 0 elsewhere.
 TS_INLINE float layout_kappa(float kappa, global const uchar* atlas_exemplar, int q, int own_exemplar) {
     return own_exemplar >= 0 && (int)atlas_exemplar[q] != own_exemplar ? kappa * LAYOUT_WEIGHT : kappa;
 }
 
+// Corrects the pixels of one parity class (one of the 4 subpasses), in place: a pixel of the class
+// only reads pixels of other classes (and itself), so there are no races. Costs are evaluated in
+// quantised appearance units weighted by scale^2 per mode: the metric distance of eq. 7 without
+// dequantising every tap.
 // Constraints (s5): `target_sets` (one uint per region pixel, 0 = any type) rejects candidates of
 // other types, with seeding from the per-type lists when all are rejected; `blend` holds, per region
 // pixel, the point and curve constraints' inverse-distance sums (sum b, sum b*h_t, sum b*d), which

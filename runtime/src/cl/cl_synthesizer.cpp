@@ -154,7 +154,7 @@ private:
         return Status::ok();
     }
 
-    // Grows a buffer to hold `pixels` float4s (a state's pixels, or two int4 per patch cell; never
+    // Grows a buffer to hold `pixels` float4s (a state's pixels, or one int4 per patch cell; never
     // shrinks, so tiles of one size reuse it).
     Status reserve(BufferHandle& buffer, size_t& capacity, size_t pixels, const char* what = "state") {
         if (capacity >= pixels && buffer) return Status::ok();
@@ -174,9 +174,9 @@ private:
     Status init(int level, const synth::LevelRegion& region, uint32_t seed) override {
         Status s = reserve(current_, current_capacity_, region.pixels());
         if (!s) return s;
-        entry_levels_ = synth::entryLevels(*db_, level);
-        if (std::count(entry_levels_.begin(), entry_levels_.end(), level) == 0)
-            return Status::error("database level " + std::to_string(level) + " has no exemplar with interior pixels");
+        auto entry = synth::startingEntryLevels(*db_, level);
+        if (!entry) return entry.status();
+        entry_levels_ = std::move(entry.value());
         const synth::ShareLayout layout =
             synth::shareLayout(*db_, entry_levels_, level, region.x, region.y, region.width, region.height, seed);
         auto layout_buffer = upload(layout.exemplar.data(), layout.exemplar.size());
@@ -228,7 +228,7 @@ private:
         std::swap(current_capacity_, next_capacity_);
         if (!s) return s;
         // Exemplars too small for the coarser levels enter here (synth/initial_patches.h).
-        if (std::count(entry_levels_.begin(), entry_levels_.end(), level) == 0) return Status::ok();
+        if (!synth::entersAt(entry_levels_, level)) return Status::ok();
         const synth::ShareLayout layout =
             synth::shareLayout(*db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed);
         auto layout_buffer = upload(layout.exemplar.data(), layout.exemplar.size());

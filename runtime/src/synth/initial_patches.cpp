@@ -1,6 +1,7 @@
 #include "synth/initial_patches.h"
 
 #include <algorithm>
+#include <string>
 #include <utility>
 
 #include "core/hash.h"
@@ -51,6 +52,17 @@ std::vector<int> entryLevels(const ExemplarDatabase& db, int coarsest) {
         if (side(level, e) > 2 * kInteriorMargin) entry[e] = level;
     }
     return entry;
+}
+
+Result<std::vector<int>> startingEntryLevels(const ExemplarDatabase& db, int coarsest) {
+    std::vector<int> entry = entryLevels(db, coarsest);
+    if (!entersAt(entry, coarsest))
+        return Status::error("database level " + std::to_string(coarsest) + " has no exemplar with interior pixels");
+    return entry;
+}
+
+bool entersAt(const std::vector<int>& entry_levels, int level) {
+    return std::find(entry_levels.begin(), entry_levels.end(), level) != entry_levels.end();
 }
 
 uint32_t shareSalt(uint32_t seed) { return core::levelSalt(seed, 0, 15); }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "terrasynth/database.h"
+#include "terrasynth/status.h"
 #include "terrasynth/synthesizer.h"
 
 namespace terrasynth::synth {
@@ -75,6 +76,13 @@ int shareBlockSide(int level);
 // where it first has interior pixels. -1 for an exemplar without interior pixels at the level it
 // would enter (never used).
 std::vector<int> entryLevels(const ExemplarDatabase& db, int coarsest);
+
+// entryLevels for a synthesis starting at `coarsest`, or an error naming the level when no
+// exemplar has interior pixels to start from there.
+Result<std::vector<int>> startingEntryLevels(const ExemplarDatabase& db, int coarsest);
+
+// Whether some exemplar of `entry_levels` enters at `level`.
+bool entersAt(const std::vector<int>& entry_levels, int level);
 
 // The exemplar of every share cell of the blocks [first_bx, first_bx + blocks_w) x [first_by,
 // first_by + blocks_h), block by block in row order, each block's kShareCellsPerBlock cells in row

@@ -1,9 +1,8 @@
 // The reference backend: runs the C++ reference kernels through the shared driver.
 #include "synth/reference_synthesizer.h"
 
-#include <algorithm>
 #include <cmath>
-#include <string>
+#include <utility>
 
 #include "synth/initial_patches.h"
 #include "synth/reference_kernels.h"
@@ -16,9 +15,9 @@ class ReferenceSteps final : public SynthesisSteps {
 public:
     ReferenceSteps(const ExemplarDatabase& db, DepthMargins& margins) : db_(db), margins_(margins) {}
     Status init(int level, const LevelRegion& region, uint32_t seed) override {
-        entry_levels_ = entryLevels(db_, level);
-        if (std::count(entry_levels_.begin(), entry_levels_.end(), level) == 0)
-            return Status::error("database level " + std::to_string(level) + " has no exemplar with interior pixels");
+        auto entry = startingEntryLevels(db_, level);
+        if (!entry) return entry.status();
+        entry_levels_ = std::move(entry.value());
         const ShareLayout layout = shareLayout(db_, entry_levels_, level, region.x, region.y, region.width, region.height, seed);
         layout_ = layout.exemplar;
         coarsest_ = level;
@@ -29,7 +28,7 @@ public:
         std::vector<PixelState> next;
         referenceUpsample(db_.levels[level + 1], db_.levels[level], parent, current_, child, jitter, seed, level, next);
         current_.swap(next);
-        if (std::count(entry_levels_.begin(), entry_levels_.end(), level) > 0)
+        if (entersAt(entry_levels_, level))
             referencePatches(db_.levels[level],
                              shareLayout(db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed),
                              child, seed, level, true, current_);
