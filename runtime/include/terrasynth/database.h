@@ -14,7 +14,7 @@
 //   type        T^i, terrain type (majority of the 2^i x 2^i block of T^0); kNoType in gutters 1 byte
 //   exemplar    exemplar index, kNoExemplar in the padding                              1 byte
 //   closed      1 where the pixel lies in a closed depression of its own exemplar at this level
-//               (Priority-Flood raises it), so synthesis keeps real basins (issue 17)   1 byte
+//               (Priority-Flood raises it), so drainage keeps real basins               1 byte
 // = 19 bytes per pixel per level, about 25 per base pixel with the pyramid (paper: 42.7).
 //
 // Building is deterministic: the same inputs and options give the same bytes, whatever the thread

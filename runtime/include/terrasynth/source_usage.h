@@ -1,4 +1,4 @@
-// terrasynth/source_usage.h: which parts of the exemplars a synthesis drew from (issue 16).
+// terrasynth/source_usage.h: which parts of the exemplars a synthesis drew from.
 //
 // A synthesis that copies mostly from the flattest parts of its exemplars looks smooth and
 // detail-less even when each pixel is a faithful copy. Given the per-pixel sources of a synthesis

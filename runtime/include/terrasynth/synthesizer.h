@@ -63,7 +63,7 @@ constexpr int kMinCoarsestSide = 40;
 // pixels.
 constexpr int kInitialPatchSize = 24;
 
-// Drainage (issue 17; beyond the paper, whose s6 notes that pixel-based synthesis drains
+// Drainage (beyond the paper, whose s6 notes that pixel-based synthesis drains
 // unrealistically). Breach: after the correction passes of every level, each closed pit looks for the
 // cheapest path to a lower pixel within breachRadius(level) pixels and the path is carved to a
 // straight descending profile (least-cost breaching, Lindsay 2016), by lowering V; the carved
@@ -75,11 +75,11 @@ constexpr int kInitialPatchSize = 24;
 // Bounded reach: a pixel depends on heights within 2 * breachRadius(level) + 1
 // pixels, which the window plan adds to that level's margin, so windows stay bit-identical to
 // larger windows. Frozen pixels and pixels under point or curve constraints are never carved (a
-// path may end at a lower one). Cost: the search runs on the host and every level's region grows
-// by the reach: about +30% synthesis time at 1024^2 on 2 CPU cores through PoCL (docs/realism.md,
-// "Drainage", has the rounds), and on a GPU, where the kernels take 2 ms, the host-side search is
-// most of the time; which is why Off is the default. Off: no drainage step; the synthesis is
-// exactly what it is without this feature (the issue 16 start of synthesis applies to both).
+// path may end at a lower one). Cost: every level's region grows by the reach and the search runs
+// on the host: roughly a quarter more synthesis time than Off on CPUs, and on a GPU, where the
+// kernels are fast, the host-side search takes many times their time (docs/benchmarks.md has the
+// figures); which is why Off is the default. Off: no drainage step; everything else (where
+// synthesis starts, kInitialPatchSize above) is the same for both.
 enum class Drainage : uint8_t { Off = 0, Breach = 1 };
 // Search radius of the breach at `level`, in pixels of that level (docs/realism.md, "Drainage").
 int breachRadius(int level);
@@ -120,7 +120,7 @@ struct SynthesisParams {
     // recorded history holds the uncorrected state for each of their passes. 0 (default) = a full
     // synthesis; 0..16.
     int preview_levels = 0;
-    Drainage drainage = Drainage::Off;  // Breach: about +30% at 1024^2 on 2 CPU cores (above)
+    Drainage drainage = Drainage::Off;  // Breach: roughly a quarter more time on CPUs (above)
 };
 
 struct SynthesisOutput {
@@ -181,15 +181,16 @@ protected:
 int coarsestSynthesizedLevel(const ExemplarDatabase& db, const SynthesisParams& params);
 
 // Point heights that hold (s5.1 with the finest levels free). The paper leaves the finest two levels
-// unconstrained, and their detail moves the finished site away from the asked height (measured: up
-// to 5% of the relief). This returns the constraints with every PointConstraint::lift_m set so the
-// finished level-0 height at each site is within tolerance_m of height_m, found by synthesizing a
-// 2x2 window at each site (equal to the full synthesis, see above) up to max_rounds times and
-// correcting the lift by the residual; if the tolerance is not reached, the best round is kept.
+// unconstrained, and their detail moves the finished site away from the asked height (typically by
+// 1-5% of the relief, docs/project-format.md). This returns the constraints with every
+// PointConstraint::lift_m set so the finished level-0 height at each site is within tolerance_m of
+// height_m, found by synthesizing a 2x2 window at each site (equal to the full synthesis, see above)
+// up to max_rounds times and correcting the lift by the residual; if the tolerance is not reached,
+// the best round is kept.
 // With hold_on_free_levels the slope is held over the site's own 7x7 pixels too (points asked at
 // 5 degrees or more): the tilts (PointConstraint::tilt_east/south) are searched the same way until
-// the plane fitted over the finished 7x7 pixels rises within 10% of the asked rise (measured: from
-// 10 degrees up, direction within 15 degrees, docs/curves.md).
+// the plane fitted over the finished 7x7 pixels rises within 10% of the asked rise (tested: from
+// 10 degrees up, direction within 15 degrees; docs/project-format.md has the measured figures).
 // Pass the same params (coherence, history) as the synthesis that will use the result; existing
 // lifts are the starting point, so re-lifting after a small edit usually takes one or two rounds.
 // Cost: per round, the sites are synthesized in windows grouped by a cost model (one window where
