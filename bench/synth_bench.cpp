@@ -66,14 +66,14 @@ void synthesize(benchmark::State& state, SynthesisBackend backend, Drainage drai
 
 void BM_SynthesizeOpenCL(benchmark::State& state) { synthesize(state, SynthesisBackend::OpenCL); }
 void BM_SynthesizeReference(benchmark::State& state) { synthesize(state, SynthesisBackend::Reference); }
-// With the drainage step (issue 17, off by default), to see its cost next to BM_SynthesizeOpenCL.
+// With the drainage step (off by default), to see its cost next to BM_SynthesizeOpenCL.
 void BM_SynthesizeOpenCLBreach(benchmark::State& state) { synthesize(state, SynthesisBackend::OpenCL, Drainage::Breach); }
 
-// Issue 17's cost figure (breach over off, "same run"): each iteration synthesizes one window with
+// The drainage's cost (breach over off, "same run"): each iteration synthesizes one window with
 // drainage off and the next with breach, the order alternating, so both see the same minutes of a
-// shared machine, whose speed drifts by 20% and more between runs of a few seconds (docs/realism.md,
-// "Cost, 2026-12-01"). Reports the medians of each and the median of the pairs' own ratios; the
-// iteration time is the pair's.
+// shared machine, whose speed drifts by 20% and more between runs of a few seconds
+// (docs/benchmarks.md, "Drainage cost"). Reports the medians of each and the median of the pairs'
+// own ratios; the iteration time is the pair's.
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const size_t n = v.size();
@@ -109,8 +109,8 @@ void BM_BreachOverOff(benchmark::State& state) {
     state.counters["breach_over_off"] = median(ratios);
 }
 
-// Point lifting (issue 20: about 80 ms per point before sites shared windows): range(0) random point
-// constraints over a range(1)^2 extent, lifted onto their heights (up to 10 rounds).
+// Point lifting (docs/benchmarks.md, "Point lifts"): range(0) random point constraints over a
+// range(1)^2 extent, lifted onto their heights (up to 10 rounds).
 void BM_LiftPoints(benchmark::State& state) {
     const int count = static_cast<int>(state.range(0)), size = static_cast<int>(state.range(1));
     auto constraints = std::make_shared<SynthesisConstraints>();
