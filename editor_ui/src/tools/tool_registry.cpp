@@ -14,6 +14,7 @@
     TOOL(makeHoleFillTool)            \
     TOOL(makeNoiseTool)               \
     TOOL(makePerspectiveTool)         \
+    TOOL(makeFlattenTool)             \
     /* a new tool: one more line above this one */
 
 namespace terrasynth::editor {
