@@ -5,50 +5,34 @@
 #include <imgui.h>
 
 #include "editor_actions.h"
-#include "editor_tool.h"
-#include "tool_kit.h"
+#include "region_tool.h"
 
 namespace terrasynth::editor {
 namespace {
 using namespace tools;
 
-class HoleFillTool : public EditorTool {
+class HoleFillTool : public RegionTool {
 public:
-    explicit HoleFillTool(EditorActions& editor) : editor_(editor) {}
+    using RegionTool::RegionTool;
 
     const char* name() const override { return "holefill"; }
     ToolGroup group() const override { return ToolGroup::Layers; }
 
-    bool press(const osg::Vec2d& at, int) override {
-        region_.press(editor_, at);
-        return true;
-    }
-    void drag(const osg::Vec2d& at) override { region_.drag(at); }
+    void drawPanel() override { ImGui::TextWrapped("Drag an ellipse to fill by quilting; pick one of three variants (s4.4)."); }
 
-    void release(const osg::Vec2d&) override {
-        region_.active = false;
-        const auto end = region_.end(editor_);
-        if (!end) return;  // a click
+private:
+    void finish() override {
+        const auto to = end();
+        if (!to) return;  // a click
         const SessionView& view = editor_.view();
         HoleFillParams fill;
-        fill.hole = regionBetween(*region_.track.press_px, *end, view.extent, RegionShape::Ellipse);
+        fill.hole = regionBetween(*track_.press_px, *to, view.extent, RegionShape::Ellipse);
         fill.seed = view.edit_count + 1;
         // The new layer's index: offer its three variants once it exists.
         const int layer = static_cast<int>(view.layers.layers.size());
         editor_.addLayer("hole fill", fill);
         editor_.showHoleFillPreviews(layer, 0);
     }
-
-    void abandon() override { region_.active = false; }
-    void drawOverlay(OverlayPainter& painter, bool active) override {
-        if (active) region_.draw(editor_, painter);
-    }
-
-    void drawPanel() override { ImGui::TextWrapped("Drag an ellipse to fill by quilting; pick one of three variants (s4.4)."); }
-
-private:
-    EditorActions& editor_;
-    RegionDrag region_;
 };
 
 }  // namespace

@@ -7,33 +7,40 @@
 #include <imgui.h>
 
 #include "editor_actions.h"
-#include "editor_tool.h"
-#include "overlay.h"
-#include "tool_kit.h"
+#include "region_tool.h"
 
 namespace terrasynth::editor {
 namespace {
 using namespace tools;
 
-class LayerPasteTool : public EditorTool {
+class LayerPasteTool : public RegionTool {
 public:
-    explicit LayerPasteTool(EditorActions& editor) : editor_(editor) {}
+    using RegionTool::RegionTool;
 
     const char* name() const override { return "layerpaste"; }
     ToolGroup group() const override { return ToolGroup::Layers; }
 
-    bool press(const osg::Vec2d& at, int) override {
-        region_.press(editor_, at);
-        return true;
-    }
-    void drag(const osg::Vec2d& at) override { region_.drag(at); }
+    void escape() override { source_.reset(); }
 
-    void release(const osg::Vec2d&) override {
-        region_.active = false;
+    void drawOverlay(OverlayPainter& painter, bool active) override {
+        if (source_) {
+            const PixelWindow& e = editor_.view().extent;
+            const Region& r = *source_;
+            const double x0 = r.x + e.x, y0 = r.y + e.y;
+            painter.drape({{x0, y0}, {x0 + r.width, y0}, {x0 + r.width, y0 + r.height}, {x0, y0 + r.height}}, true,
+                          overlay_colours::kGhost, 1.5f);
+        }
+        RegionTool::drawOverlay(painter, active);
+    }
+
+    void drawPanel() override { ImGui::TextWrapped(source_ ? "Click where the copy goes." : "Drag a rectangle to copy (s4.3)."); }
+
+private:
+    void finish() override {
         const PixelWindow& e = editor_.view().extent;
-        const auto& press_px = region_.track.press_px;
-        if (const auto end = region_.end(editor_)) {
-            source_ = regionBetween(*press_px, *end, e, RegionShape::Rect);
+        const auto& press_px = track_.press_px;
+        if (const auto to = end()) {
+            source_ = regionBetween(*press_px, *to, e, RegionShape::Rect);
             editor_.setStatus("copied: click where the copy goes", false);
             return;
         }
@@ -51,25 +58,6 @@ public:
         editor_.addLayer("layer paste", paste);
     }
 
-    void abandon() override { region_.active = false; }
-    void escape() override { source_.reset(); }
-
-    void drawOverlay(OverlayPainter& painter, bool active) override {
-        if (source_) {
-            const PixelWindow& e = editor_.view().extent;
-            const Region& r = *source_;
-            const double x0 = r.x + e.x, y0 = r.y + e.y;
-            painter.drape({{x0, y0}, {x0 + r.width, y0}, {x0 + r.width, y0 + r.height}, {x0, y0 + r.height}}, true,
-                          overlay_colours::kGhost, 1.5f);
-        }
-        if (active) region_.draw(editor_, painter);
-    }
-
-    void drawPanel() override { ImGui::TextWrapped(source_ ? "Click where the copy goes." : "Drag a rectangle to copy (s4.3)."); }
-
-private:
-    EditorActions& editor_;
-    RegionDrag region_;
     std::optional<Region> source_;  // the copied rectangle, in the stack's pixels
 };
 

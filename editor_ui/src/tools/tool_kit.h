@@ -1,5 +1,5 @@
-// Private: what several tools share: distances, the drag of a pointer, sketched strokes and dragged
-// regions. Main (UI) thread only.
+// Private: what several tools share: distances, the drag of a pointer, sketched strokes. Main (UI)
+// thread only.
 #pragma once
 
 #include <algorithm>
@@ -10,7 +10,6 @@
 #include <osg/Vec2d>
 
 #include "editor_actions.h"
-#include "overlay.h"
 #include "terrasynth/grid.h"
 #include "terrasynth/layers_tools.h"
 #include "terrasynth_editor/sketch_geometry.h"
@@ -76,33 +75,6 @@ struct SketchStroke {
             if (a && b) l += screenDistance(*a, *b);
         }
         return l;
-    }
-};
-
-// A rectangle (or its inscribed ellipse) dragged from the press to the pointer.
-struct RegionDrag {
-    DragTrack track;
-    bool active = false;
-
-    void press(const EditorActions& editor, const osg::Vec2d& at) {
-        track.start(editor, at);
-        active = true;
-    }
-    void drag(const osg::Vec2d& at) { track.follow(at); }
-    // Where the drag ends on the terrain; nothing for a click (or nothing under the pointer).
-    std::optional<std::pair<double, double>> end(const EditorActions& editor) const {
-        const auto at = editor.pickPixel(track.last_screen.x(), track.last_screen.y());
-        if (!at || !track.press_px || screenDistance(track.last_screen, track.press_screen) < kMinStrokeScreenPx)
-            return std::nullopt;
-        return at;
-    }
-    // The rectangle from the press to the pointer, on the terrain, while dragging.
-    void draw(const EditorActions& editor, OverlayPainter& painter) const {
-        if (!active || !track.press_px) return;
-        if (const auto now = editor.pickPixel(track.last_screen.x(), track.last_screen.y())) {
-            const double x0 = track.press_px->first, y0 = track.press_px->second, x1 = now->first, y1 = now->second;
-            painter.drape({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, true, overlay_colours::kSketch, 1.5f);
-        }
     }
 };
 
