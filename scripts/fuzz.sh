@@ -12,7 +12,8 @@ seconds=${FUZZ_SECONDS:-600}
 read -r -a targets <<< "${FUZZ_TARGETS:-exemplar_png exemplar_f32 database project cli_flags}"
 cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DTERRASYNTH_FUZZ=ON -DTERRASYNTH_SANITIZE=address,undefined -DTERRASYNTH_WITH_OPENCL=OFF \
-  -DTERRASYNTH_BUILD_PLUGIN=OFF -DTERRASYNTH_BUILD_EDITOR=OFF -DTERRASYNTH_BUILD_BENCH=OFF >/dev/null
+  -DTERRASYNTH_BUILD_PLUGIN=OFF -DTERRASYNTH_BUILD_HOST=OFF -DTERRASYNTH_BUILD_EDITOR=OFF -DTERRASYNTH_BUILD_GAME=OFF \
+  -DTERRASYNTH_BUILD_BENCH=OFF >/dev/null
 cmake --build build-fuzz -j"${JOBS:-2}" --target "${targets[@]/#/fuzz_}"
 export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1

@@ -23,7 +23,8 @@ run() {
   local name=$1 sanitizers=$2 dir=build-$1
   local start=$SECONDS
   local scope=()
-  [ "${SANITIZE_SCOPE:-all}" = runtime ] && scope=(-DTERRASYNTH_BUILD_PLUGIN=OFF -DTERRASYNTH_BUILD_EDITOR=OFF)
+  [ "${SANITIZE_SCOPE:-all}" = runtime ] &&
+    scope=(-DTERRASYNTH_BUILD_PLUGIN=OFF -DTERRASYNTH_BUILD_HOST=OFF -DTERRASYNTH_BUILD_EDITOR=OFF -DTERRASYNTH_BUILD_GAME=OFF)
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTERRASYNTH_SANITIZE="$sanitizers" \
     -DTERRASYNTH_BUILD_BENCH=OFF "${scope[@]}" >/dev/null
   cmake --build "$dir" -j"$jobs"

@@ -1,9 +1,10 @@
 // The editor program (build/bin/terrasynth_editor) in a real window under Xvfb (Mesa llvmpipe),
 // driven by --script files the way a designer would: points added and dragged in the 3D view, a
 // curve, a type stroke, a freeze, a paste and a layer peak saved and reopened bit for bit, undo back
-// to the start, the panels and the terrain on screen, the autosave after kill -9, the latency
-// targets from --stats (with a generous factor: CI shares two cores), and bad input refused before
-// any window opens. When DISPLAY is unset each test re-runs itself under xvfb-run.
+// to the start, the panels and the terrain on screen, the flatten brush pulling the heights under it
+// toward their mean, the autosave after kill -9, the latency targets from --stats (with a generous
+// factor: CI shares two cores), and bad input refused before any window opens. When DISPLAY is
+// unset each test re-runs itself under xvfb-run.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -413,6 +414,83 @@ heights )" + dir + R"(/after.f32
     EXPECT_EQ(s.paste(s.pasteIds()[0])->exemplar, 0);
     EXPECT_EQ(s.heights().heights, readF32(dir + "/after.f32").heights);
     EXPECT_EQ(extentHeights(dir + "/saved.tsyn").heights, readF32(dir + "/after.f32").heights);
+}
+
+TEST(EditorGui, FlattenPullsTheHeightsUnderTheBrushTowardTheirMean) {
+    RUN_UNDER_XVFB("EditorGui.FlattenPullsTheHeightsUnderTheBrushTowardTheirMean");
+    const std::string dir = test::scratchDir("editor_flatten");
+    const std::string project = writeProject(dir);
+    ASSERT_FALSE(project.empty());
+    // One click of the flatten brush in the middle of the view (level-0 pixel ~(512, 512)).
+    const std::string script = writeText(dir + "/flatten.script", std::string(kAerialStart) + R"(heights )" + dir + R"(/start.f32
+tool flatten
+set flatten.radius 64
+set flatten.strength 0.9
+set flatten.falloff 0.5
+move 640 360
+click
+settle
+expect-ok
+heights )" + dir + R"(/after.f32
+save )" + dir + R"(/saved.tsyn
+)");
+    const EditorRun r = runEditor("'" + project + "' --script '" + script + "'");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(changedWindow(r.out, "add flatten").has_value()) << r.out;
+
+    // The layer: a "replace" paste of the terrain below onto itself, a disc of the brush under the click.
+    auto session = EditSession::open(dir + "/saved.tsyn");
+    ASSERT_TRUE(session) << session.message();
+    const auto& layers = (*session)->layers().layers;
+    ASSERT_EQ(layers.size(), 1u) << describeLayerStack((*session)->layers());
+    const auto* flatten = std::get_if<PasteParams>(&layers[0].tool);
+    ASSERT_NE(flatten, nullptr);
+    EXPECT_EQ(flatten->blend, PasteBlend::Replace);
+    EXPECT_EQ(flatten->dest.width, 128.0);
+    EXPECT_NEAR(flatten->dest.x + 64.0, 512.0, 2.0);
+    EXPECT_NEAR(flatten->dest.y + 64.0, 512.0, 2.0);
+
+    const Heightfield start = readF32(dir + "/start.f32");
+    const Heightfield after = readF32(dir + "/after.f32");
+    ASSERT_FALSE(start.empty());
+    ASSERT_EQ(after.width, start.width);
+    // The target: the start's mean height under the brush, weighted by its falloff.
+    const std::vector<float> mask = regionMask(flatten->dest, flatten->feather_px, start.width, start.height);
+    double weight = 0.0, target = 0.0;
+    for (size_t i = 0; i < mask.size(); ++i) weight += mask[i], target += mask[i] * start.heights[i];
+    ASSERT_GT(weight, 0.0);
+    target /= weight;
+    // Inside the brush's full-strength core the heights moved toward the target and the ground got
+    // flatter; beyond four radii nothing moved. (The multi-band blend pulls the coarse bands only
+    // partly over a disc this small, whose blurred mask stays below 1, and spreads them smoothly
+    // past its edge, as for any paste layer.)
+    const double cx = flatten->dest.x + 0.5 * flatten->dest.width, cy = flatten->dest.y + 0.5 * flatten->dest.height;
+    const double core_radius = 0.5 * flatten->dest.width - flatten->feather_px;
+    double before_dev = 0.0, after_dev = 0.0, before_rough = 0.0, after_rough = 0.0;
+    int core = 0, far = 0, far_moved = 0;
+    for (int y = 0; y + 1 < start.height; ++y)
+        for (int x = 0; x + 1 < start.width; ++x) {
+            const double d = std::hypot(x - cx, y - cy);
+            const double a = start.at(x, y), b = after.at(x, y);
+            if (d < core_radius) {
+                ++core;
+                before_dev += std::fabs(a - target);
+                after_dev += std::fabs(b - target);
+                before_rough += std::fabs(start.at(x + 1, y) - a) + std::fabs(start.at(x, y + 1) - a);
+                after_rough += std::fabs(after.at(x + 1, y) - b) + std::fabs(after.at(x, y + 1) - b);
+            } else if (d > 2.0 * flatten->dest.width) {
+                ++far;
+                far_moved += std::fabs(b - a) > 0.01;
+            }
+        }
+    std::printf("target %.1f m over %d core pixels: mean deviation %.2f -> %.2f m, roughness %.2f -> %.2f m/px; "
+                "%d of %d far pixels moved\n",
+                target, core, before_dev / core, after_dev / core, before_rough / core, after_rough / core, far_moved, far);
+    ASSERT_GT(core, 0);
+    ASSERT_GT(before_dev / core, 1.0) << "the brush landed on flat ground: the test shows nothing";
+    EXPECT_LT(after_dev, 0.5 * before_dev);
+    EXPECT_LT(after_rough, 0.5 * before_rough);
+    EXPECT_EQ(far_moved, 0);
 }
 
 TEST(EditorGui, TheAutosaveHoldsTheLastEditAfterKillAndIsRecovered) {

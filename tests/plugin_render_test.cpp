@@ -15,7 +15,7 @@
 #include <osgViewer/Viewer>
 
 #include "render_support.h"
-#include "terrasynth_plugin/hole_check.h"
+#include "terrasynth_host/hole_check.h"
 #include "terrasynth_plugin/terrain_node.h"
 #include "test_support.h"
 
@@ -73,8 +73,8 @@ void runFlight() {
         }
         const TerrainStats st = terrain->stats();
         ASSERT_GT(st.drawn_tiles, 0u);
-        const HoleCount count = countHoles(*capture->image, *cam, st.drawn_min_height - 1.0,
-                                           0.9 * terrain->options().view_radius_m, kClear);
+        const host::HoleCount count = host::countHoles(*capture->image, *cam, st.drawn_min_height - 1.0,
+                                                       0.9 * terrain->options().view_radius_m, kClear);
         const int holes = count.holes, required = count.required, sky = count.sky_clear;
         sky_total += sky;
         required_total += required;

@@ -22,8 +22,8 @@
 #include "terrasynth_game/exact_ground.h"
 #include "terrasynth_game/flight_model.h"
 #include "terrasynth_game/rings.h"
+#include "terrasynth_host/hole_check.h"
 #include "terrasynth_host/host_window.h"
-#include "terrasynth_plugin/hole_check.h"
 #include "terrasynth_plugin/plugin_options.h"
 #include "terrasynth_plugin/terrain_node.h"
 
@@ -465,8 +465,8 @@ void Session::measureHeightAt() {
 void Session::checkHoles(osg::Image& image) {
     const plugin::TerrainStats ts = world_.node->stats();
     if (ts.drawn_tiles == 0) return;
-    const plugin::HoleCount c = plugin::countHoles(image, *host_->viewer().getCamera(), ts.drawn_min_height - 1.0,
-                                                   0.9 * world_.node->options().view_radius_m, kHoleCheckSky);
+    const host::HoleCount c = host::countHoles(image, *host_->viewer().getCamera(), ts.drawn_min_height - 1.0,
+                                               0.9 * world_.node->options().view_radius_m, kHoleCheckSky);
     ++stats_.hole_frames_checked;
     stats_.hole_pixels += c.holes;
     stats_.hole_required_pixels += c.required;

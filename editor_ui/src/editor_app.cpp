@@ -1,5 +1,5 @@
-// EditorApp: the frame loop, the terrain and camera, shortcuts, requests to the edit thread,
-// saving and autosave, and the --stats report.
+// EditorApp: the frame loop, the terrain and camera, shortcuts and the input routed to the active
+// tool, requests to the edit thread, picking, saving and autosave, and the --stats report.
 #include "editor_app.h"
 
 #include <algorithm>
@@ -32,37 +32,17 @@ const osg::Vec3 kFrozenColour(0.55f, 0.85f, 1.0f);
 
 }  // namespace
 
-const char* toolName(Tool tool) {
-    switch (tool) {
-        case Tool::Point: return "point";
-        case Tool::Curve: return "curve";
-        case Tool::Paint: return "paint";
-        case Tool::Freeze: return "freeze";
-        case Tool::Paste: return "paste";
-        case Tool::Peak: return "peak";
-        case Tool::Ridge: return "ridge";
-        case Tool::LayerPaste: return "layerpaste";
-        case Tool::HoleFill: return "holefill";
-        case Tool::Noise: return "noise";
-        case Tool::Perspective: return "perspective";
-    }
-    return "?";
-}
-
-std::optional<Tool> toolFromName(const std::string& name) {
-    for (Tool t : kTools)
-        if (name == toolName(t)) return t;
-    return std::nullopt;
-}
-
 EditorApp::EditorApp(host::HostWindow& host, EditorOptions options, Project project, std::vector<ScriptCommand> script,
                      std::shared_ptr<const ExemplarDatabase> database, std::string recover_from)
     : host_(host),
       options_(std::move(options)),
       project_(std::move(project)),
       preloaded_(std::move(database)),
-      recover_from_(std::move(recover_from)),
-      script_(std::move(script)) {
+      recover_from_(std::move(recover_from)) {
+    tools_ = makeEditorTools(*this);
+    tool_ = tools_.front().get();
+    show_reach_ = &tool_options_.flag("overlay.reach", true);
+    if (!script.empty()) script_ = std::make_unique<ScriptPlayer>(std::move(script), options_.script, *this, *this, host_);
     save_path_ = project_.path;
     autosave_path_ = autosavePath(project_.path);
     root_ = new osg::Group;
@@ -71,7 +51,7 @@ EditorApp::EditorApp(host::HostWindow& host, EditorOptions options, Project proj
     const std::string newer = newerAutosave(project_.path);
     if (!recover_from_.empty()) {
         startOpening(recover_from_);
-    } else if (!newer.empty() && script_.empty()) {
+    } else if (!newer.empty() && !script_) {
         recover_from_ = newer;
         asking_recover_ = true;
     } else {
@@ -84,7 +64,7 @@ EditorApp::EditorApp(host::HostWindow& host, EditorOptions options, Project proj
 EditorApp::~EditorApp() {
     // The edit thread first: it may still hand the terrain a height source.
     worker_.reset();
-    for (ImTextureID t : preview_images_) host_.releaseImage(t);
+    releasePreviewImages();
     for (ImTextureID t : exemplar_images_) host_.releaseImage(t);
 }
 
@@ -114,7 +94,7 @@ int EditorApp::run() {
     for (;;) {
         const bool open = host_.beginFrame();
         frame_input_s_ = steadySeconds();
-        if (!open || script_done_) {
+        if (!open || (script_ && script_->done())) {
             host_.endFrame();
             break;
         }
@@ -123,11 +103,12 @@ int EditorApp::run() {
         latency_.afterFrame(steadySeconds());
         if (terrain_) frames_.add(phase_, t);
     }
+    if (script_ && script_->failed()) exit_code_ = kExitFailed;
     if (worker_ && worker_->state() == EditWorker::State::Failed && exit_code_ == kExitOk) exit_code_ = kExitBadInput;
     // Closing the window never loses work: what the autosave does not hold yet is written now.
-    if (worker_ && worker_->state() == EditWorker::State::Ready && script_.empty()) {
-        for (int i = 0; i < gestures_open_; ++i) endGesture();
-        drag_ = Drag{};
+    if (worker_ && worker_->state() == EditWorker::State::Ready && !script_) {
+        for (int i = 0; i < gestures_open_; ++i) endGesture();  // a drag's too: the tool sees no release
+        tool_dragging_ = false;
         worker_->waitIdle(600.0);
         worker_->takeResults();
         if (worker_->editCount() != autosaved_count_ && worker_->editCount() != user_saved_count_) {
@@ -154,7 +135,7 @@ void EditorApp::frame() {
             open_failed_reported_ = true;
             std::fprintf(stderr, "terrasynth_editor: %s\n", worker_->openError().c_str());
             exit_code_ = kExitBadInput;
-            if (!script_.empty()) script_done_ = true;
+            if (script_) script_->stop();
         }
     } else {
         onResults();
@@ -164,7 +145,7 @@ void EditorApp::frame() {
         drawOverlays();
         autosaveTick();
     }
-    if (!script_.empty() && !script_done_ && !asking_recover_) scriptStep();
+    if (script_ && !script_->done() && !asking_recover_) script_->step();
 }
 
 void EditorApp::onResults() {
@@ -232,29 +213,86 @@ void EditorApp::handleInput() {
         last_input_s_ = frame_input_s_;
     for (const host::InputEvent& e : host_.routedEvents()) {
         using T = host::InputEvent::Type;
+        const osg::Vec2d at(e.x, e.y);
         if (e.type == T::KeyDown || e.type == T::KeyRepeat) {
             const bool ctrl = e.mods & GLFW_MOD_CONTROL, shift = e.mods & GLFW_MOD_SHIFT;
-            if (drag_.kind != Drag::Kind::None) continue;  // no shortcuts in the middle of a drag
+            if (tool_dragging_) continue;  // no shortcuts in the middle of a drag
             if (ctrl && e.key == GLFW_KEY_Z) shift ? redo() : undo();
             else if (ctrl && e.key == GLFW_KEY_Y) redo();
             else if (ctrl && e.key == GLFW_KEY_S && e.type == T::KeyDown) save(save_path_);
             else if ((e.key == GLFW_KEY_DELETE || e.key == GLFW_KEY_BACKSPACE) && e.type == T::KeyDown) deleteSelection();
-            else if (e.key == GLFW_KEY_ESCAPE && e.type == T::KeyDown) {
-                paste_source_.clear();
-                paste_exemplar_ = -1;
-                layer_paste_source_.reset();
-                selected_point_ = selected_curve_ = selected_paste_ = 0;
-                selected_widget_ = -1;
-            }
+            else if (e.key == GLFW_KEY_ESCAPE && e.type == T::KeyDown) escape();
         } else if (e.type == T::MouseDown && e.button == 0) {
-            toolPress(e.x, e.y, e.mods);
+            tool_dragging_ = tool_->press(at, e.mods);
         } else if (e.type == T::MouseMove) {
-            if (drag_.kind != Drag::Kind::None) toolDrag(e.x, e.y);
-            else toolHover(e.x, e.y);
-        } else if (e.type == T::MouseUp && e.button == 0) {
-            toolRelease(e.x, e.y);
+            if (tool_dragging_) tool_->drag(at);
+            else tool_->hover(at);
+        } else if (e.type == T::MouseUp && e.button == 0 && tool_dragging_) {
+            tool_->drag(at);
+            tool_dragging_ = false;
+            tool_->release(at);
         }
     }
+}
+
+bool EditorApp::selectTool(const std::string& name) {
+    for (const auto& tool : tools_)
+        if (name == tool->name()) {
+            if (tool_dragging_) tool_->abandon();
+            tool_dragging_ = false;
+            tool_ = tool.get();
+            return true;
+        }
+    return false;
+}
+
+void EditorApp::escape() {
+    copied_.clear();
+    for (const auto& tool : tools_) tool->escape();
+    selection_.clearItems();
+}
+
+void EditorApp::deleteSelection() {
+    if (auto r = selection_.takeDeletion()) submit(std::move(*r));
+}
+
+std::optional<osg::Vec3d> EditorApp::pickWorld(double x, double y) const {
+    if (!terrain_ || !view_) return std::nullopt;
+    osg::Vec3d origin, direction;
+    projection_.ray(x, y, &origin, &direction);
+    const double mpp = view_->frame.meters_per_pixel;
+    const double extent_m = std::max(view_->extent.width, view_->extent.height) * mpp;
+    plugin::TerrainNode* t = terrain_.get();
+    return pickTerrain(origin, direction, [t](double wx, double wy) { return t->heightAt(wx, wy); }, 0.5 * mpp,
+                       10.0 * extent_m + camera_->distance());
+}
+
+std::optional<std::pair<double, double>> EditorApp::pickPixel(double x, double y) const {
+    const auto world = pickWorld(x, y);
+    if (!world) return std::nullopt;
+    return std::make_pair(view_->frame.pixelX(world->x()), view_->frame.pixelY(world->y()));
+}
+
+float EditorApp::groundAtPixel(double px, double py) const {
+    const GridFrame& f = view_->frame;
+    if (terrain_)
+        if (auto h = terrain_->heightAt(f.worldX(px), f.worldY(py))) return *h;
+    return 0.5f * (view_->min_height_m + view_->max_height_m);
+}
+
+std::optional<osg::Vec2d> EditorApp::screenOfPixel(double px, double py) const {
+    const GridFrame& f = view_->frame;
+    return projection_.toScreen(osg::Vec3d(f.worldX(px), f.worldY(py), groundAtPixel(px, py)));
+}
+
+void EditorApp::viewAerial(const osg::Vec3d& centre, double width_m) {
+    camera_->setAerial(centre, width_m);
+    free_view_ = false;
+}
+
+void EditorApp::viewFree(const osg::Vec3d& centre, double distance_m, double heading_deg, double pitch_deg) {
+    camera_->setFree(centre, distance_m, heading_deg, pitch_deg);
+    free_view_ = true;
 }
 
 void EditorApp::submit(EditRequest request) { worker_->submit(std::move(request)); }
@@ -337,7 +375,7 @@ void EditorApp::save(const std::string& path) {
 void EditorApp::autosaveTick() {
     // At most once per interval, and only in a pause: a save of a 1024^2 extent writes ~30 MB on the
     // edit thread, and an edit submitted meanwhile would wait for it.
-    if (gestures_open_ > 0 || autosave_queued_ || drag_.kind != Drag::Kind::None) return;
+    if (gestures_open_ > 0 || autosave_queued_ || tool_dragging_) return;
     const double now = steadySeconds();
     if (now - last_autosave_s_ < options_.autosave_interval_s) return;
     if (now - last_input_s_ < options_.autosave_interval_s || !worker_->idle()) return;
@@ -362,6 +400,44 @@ void EditorApp::autosaveTick() {
         std::fflush(stdout);
     };
     submit(std::move(r));
+}
+
+void EditorApp::addLayer(const std::string& name, ToolParams tool) {
+    EditLayer layer;
+    layer.name = name;
+    layer.weights = defaultWeights(tool);  // the paper's defaults for the tool (layers.h)
+    layer.tool = std::move(tool);
+    EditRequest r;
+    r.label = "add " + name;
+    r.run = [layer](EditSession& s) { return s.addLayer(layer); };
+    r.done = [this](const EditResult& res) {
+        if (res.status && view_) selection_.layer = static_cast<int>(view_->layers.layers.size()) - 1;
+    };
+    submit(std::move(r));
+}
+
+void EditorApp::showHoleFillPreviews(int layer, int generation) {
+    previews_layer_ = layer;
+    previews_generation_ = generation;
+    previews_pending_ = false;
+    releasePreviewImages();
+}
+
+void EditorApp::releasePreviewImages() {
+    for (ImTextureID t : preview_images_) host_.releaseImage(t);
+    preview_images_.clear();
+}
+
+bool EditorApp::ready() const { return worker_->state() == EditWorker::State::Ready && terrain_; }
+
+bool EditorApp::autosaveHoldsTheLastEdit() const {
+    return !autosave_queued_ && autosaved_count_ == worker_->editCount() && worker_->idle();
+}
+
+std::optional<ImVec4> EditorApp::itemRect(const std::string& id) const {
+    const auto it = items_.find(id);
+    if (it == items_.end()) return std::nullopt;
+    return it->second;
 }
 
 void EditorApp::setStatus(const std::string& text, bool error) {

@@ -53,16 +53,16 @@ void EditorApp::drawExemplarsPanel() {
         }
         if (ImGui::IsItemDeactivated() && thumbnail_lasso_ == static_cast<int>(i)) {
             if (thumbnail_lasso_px_.size() >= 3) {
-                paste_source_ = decimate(thumbnail_lasso_px_, 2.0);
-                paste_exemplar_ = static_cast<int>(i);
-                tool_ = Tool::Paste;
+                copied_.outline = decimate(thumbnail_lasso_px_, 2.0);
+                copied_.exemplar = static_cast<int>(i);
+                selectTool("paste");
                 setStatus("copied from " + db.exemplars[i].name + ": click the terrain where it goes", false);
             }
             thumbnail_lasso_ = -1;
         }
         // The lasso in progress, or the copied piece, over its thumbnail.
         const Polyline* shown_lasso = thumbnail_lasso_ == static_cast<int>(i) ? &thumbnail_lasso_px_
-                                      : paste_exemplar_ == static_cast<int>(i) ? &paste_source_ : nullptr;
+                                      : copied_.exemplar == static_cast<int>(i) ? &copied_.outline : nullptr;
         if (shown_lasso && shown_lasso->size() > 1) {
             ImDrawList* dl = ImGui::GetWindowDrawList();
             std::vector<ImVec2> points;

@@ -62,7 +62,7 @@ void EditorApp::drawLayersPanel() {
         noteItem(item + ".visible");
         ImGui::SameLine();
         const std::string label = std::to_string(i) + ": " + layer.name + " (" + toolTypeName(layer.tool) + ")";
-        if (ImGui::Selectable(label.c_str(), selected_layer_ == i, 0, ImVec2(150, 0))) selected_layer_ = i;
+        if (ImGui::Selectable(label.c_str(), selection_.layer == i, 0, ImVec2(150, 0))) selection_.layer = i;
         noteItem(item);
         ImGui::SameLine();
         auto button = [&](const char* text, const char* id, bool enabled, const char* what,
@@ -84,16 +84,16 @@ void EditorApp::drawLayersPanel() {
         button("merge", "merge", i > 0, "merge layer down", [i](EditSession& s) { return s.mergeLayerDown(i); });
         ImGui::SameLine();
         button("x", "remove", true, "remove layer", [i](EditSession& s) { return s.removeLayer(i); });
-        if (ImGui::IsItemClicked() && selected_layer_ == i) selected_layer_ = -1;
+        if (ImGui::IsItemClicked() && selection_.layer == i) selection_.layer = -1;
         ImGui::PopID();
     }
-    if (selected_layer_ >= 0 && selected_layer_ < n) {
+    if (selection_.layer >= 0 && selection_.layer < n) {
         ImGui::Separator();
-        ImGui::Text("Layer %d bands", selected_layer_);
-        ImGui::PushID(1000 + selected_layer_);
-        drawBandSliders("layer" + std::to_string(selected_layer_), stack.layers[static_cast<size_t>(selected_layer_)].weights,
-                        selected_layer_);
-        drawLayerParams(selected_layer_, stack.layers[static_cast<size_t>(selected_layer_)]);
+        ImGui::Text("Layer %d bands", selection_.layer);
+        ImGui::PushID(1000 + selection_.layer);
+        drawBandSliders("layer" + std::to_string(selection_.layer), stack.layers[static_cast<size_t>(selection_.layer)].weights,
+                        selection_.layer);
+        drawLayerParams(selection_.layer, stack.layers[static_cast<size_t>(selection_.layer)]);
         ImGui::PopID();
     }
     ImGui::End();
@@ -134,8 +134,7 @@ void EditorApp::drawLayerParams(int index, const EditLayer& layer) {
         if (ImGui::SmallButton("previews")) {
             previews_layer_ = index;
             previews_generation_ = static_cast<int>(fill->choices.size()) - 1;
-            for (ImTextureID t : preview_images_) host_.releaseImage(t);
-            preview_images_.clear();
+            releasePreviewImages();
         }
         noteItem("holefill.previews");
     } else if (const auto* sketch = std::get_if<PerspectiveParams>(&next.tool)) {
@@ -214,8 +213,7 @@ void EditorApp::drawHoleFillPreviews() {
     if (ImGui::Button("Refine the pick") && !preview_images_.empty() &&
         previews_generation_ + 1 <= static_cast<int>(fill->choices.size())) {
         ++previews_generation_;
-        for (ImTextureID t : preview_images_) host_.releaseImage(t);
-        preview_images_.clear();
+        releasePreviewImages();
     }
     ImGui::SameLine();
     if (ImGui::Button("Done")) previews_layer_ = -1;

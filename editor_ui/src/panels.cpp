@@ -5,21 +5,13 @@
 #include <cstdio>
 
 #include "editor_app.h"
+#include "tools/curve_presets.h"
 
 namespace terrasynth::editor {
 namespace {
 
-constexpr float kLeftWidth = 270.0f, kRightWidth = 310.0f, kStatusHeight = 26.0f;
+constexpr float kLeftWidth = 270.0f, kStatusHeight = 26.0f;
 constexpr ImGuiWindowFlags kPanelFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
-
-const char* presetName(CurvePreset p) {
-    switch (p) {
-        case CurvePreset::Ridge: return "ridge";
-        case CurvePreset::Valley: return "valley";
-        case CurvePreset::Cliff: return "cliff";
-    }
-    return "?";
-}
 
 }  // namespace
 
@@ -71,16 +63,11 @@ void EditorApp::drawMenuBar() {
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("View")) {
-        if (ImGui::MenuItem("Free 3D view", nullptr, free_view_) && camera_) {
-            free_view_ = true;
-            camera_->setFree(camera_->center(), std::max(camera_->distance(), 1000.0), 0.0, 40.0);
-        }
-        if (ImGui::MenuItem("Aerial view", nullptr, !free_view_) && camera_) {
-            free_view_ = false;
-            camera_->setAerial(camera_->center(), camera_->viewWidthM());
-        }
+        if (ImGui::MenuItem("Free 3D view", nullptr, free_view_) && camera_)
+            viewFree(camera_->center(), std::max(camera_->distance(), 1000.0), 0.0, 40.0);
+        if (ImGui::MenuItem("Aerial view", nullptr, !free_view_) && camera_) viewAerial(camera_->center(), camera_->viewWidthM());
         ImGui::Separator();
-        ImGui::MenuItem("Constraints' reach", nullptr, &show_reach_);
+        ImGui::MenuItem("Constraints' reach", nullptr, show_reach_);
         if (ImGui::MenuItem("Painted types and frozen areas", nullptr, &show_types_) && terrain_) {
             plugin::TerrainLook look = terrain_->look();
             look.type_colour_mix = show_types_ ? 0.5f : 0.0f;
@@ -98,86 +85,20 @@ void EditorApp::drawToolPanel() {
     ImGui::Begin("Tools", nullptr, kPanelFlags);
     ImGui::TextDisabled("Synthesis (Gain et al. 2015)");
     int column = 0;
-    for (Tool t : kTools) {
-        if (t == Tool::Peak) {
+    ToolGroup group = ToolGroup::Synthesis;
+    for (const auto& tool : tools_) {
+        if (tool->group() != group) {
+            group = tool->group();
             ImGui::NewLine();
             ImGui::TextDisabled("Layers (Bradbury et al. 2014)");
             column = 0;
         }
         if (column++ % 3) ImGui::SameLine();
-        if (ImGui::RadioButton(toolName(t), tool_ == t)) {
-            tool_ = t;
-            drag_ = Drag{};
-        }
-        noteItem(std::string("tool.") + toolName(t));
+        if (ImGui::RadioButton(tool->name(), tool_ == tool.get())) selectTool(tool->name());
+        noteItem(std::string("tool.") + tool->name());
     }
     ImGui::Separator();
-    ToolOptions& o = tool_options_;
-    const std::vector<std::string>* types = view_ && view_->database ? &view_->database->type_names : nullptr;
-    switch (tool_) {
-        case Tool::Point:
-            ImGui::TextWrapped("Click the terrain to add a point, drag a handle to move it, Del removes it.");
-            ImGui::DragFloat("raise (m)", &o.point_raise_m, 5.0f, -3000.0f, 3000.0f, "%.0f");
-            ImGui::DragFloat("radius (px)", &o.point_radius_px, 1.0f, 4.0f, 512.0f, "%.0f");
-            ImGui::DragFloat("slope (deg)", &o.point_slope_deg, 0.5f, 0.0f, 80.0f, "%.1f");
-            ImGui::DragFloat("slope dir (deg)", &o.point_slope_direction_deg, 1.0f, 0.0f, 360.0f, "%.0f");
-            break;
-        case Tool::Curve: {
-            ImGui::TextWrapped("Drag to sketch a course; sketch over the selected one to reshape it; drag its widgets along it.");
-            int preset = static_cast<int>(o.curve_preset);
-            for (int p = 0; p < 3; ++p) {
-                if (p) ImGui::SameLine();
-                if (ImGui::RadioButton(presetName(static_cast<CurvePreset>(p)), preset == p)) o.curve_preset = static_cast<CurvePreset>(p);
-            }
-            ImGui::DragFloat("height (m)", &o.curve_height_m, 5.0f, 0.0f, 3000.0f, "%.0f");
-            ImGui::DragFloat("reach (px)", &o.curve_reach_px, 1.0f, 2.0f, 256.0f, "%.0f");
-            ImGui::Checkbox("spline", &o.curve_spline);
-            break;
-        }
-        case Tool::Paint:
-        case Tool::Freeze:
-            ImGui::TextWrapped(tool_ == Tool::Paint ? "Drag to paint a terrain type (s5.2)." : "Drag to freeze: frozen ground keeps its heights (s5.3).");
-            if (tool_ == Tool::Paint && types && !types->empty()) {
-                o.paint_type = std::clamp(o.paint_type, 0, static_cast<int>(types->size()) - 1);
-                if (ImGui::BeginCombo("type", (*types)[static_cast<size_t>(o.paint_type)].c_str())) {
-                    for (size_t i = 0; i < types->size(); ++i)
-                        if (ImGui::Selectable((*types)[i].c_str(), static_cast<int>(i) == o.paint_type)) o.paint_type = static_cast<int>(i);
-                    ImGui::EndCombo();
-                }
-            }
-            ImGui::DragFloat("brush (px)", &o.brush_radius_px, 0.5f, 1.0f, 200.0f, "%.0f");
-            ImGui::Checkbox(tool_ == Tool::Paint ? "erase" : "unfreeze", &o.erase);
-            break;
-        case Tool::Paste:
-            ImGui::TextWrapped(paste_source_.empty()
-                                   ? "Lasso a piece of terrain (or of an exemplar thumbnail), then drag it where it goes."
-                                   : "Drag from the copied piece to where it goes. Drag a selected paste to move it. Esc cancels.");
-            ImGui::DragFloat("raise (m)", &o.paste_offset_m, 5.0f, -3000.0f, 3000.0f, "%.0f");
-            break;
-        case Tool::Peak:
-            ImGui::TextWrapped("Click to raise a peak (Shift: dig a pit).");
-            ImGui::DragFloat("height (m)", &o.peak_height_m, 10.0f, 10.0f, 5000.0f, "%.0f");
-            ImGui::DragFloat("spread (px)", &o.peak_spread_px, 0.5f, 2.0f, 300.0f, "%.0f");
-            break;
-        case Tool::Ridge:
-        case Tool::Perspective:
-            ImGui::TextWrapped(tool_ == Tool::Ridge ? "Drag to sketch a ridge line."
-                                                    : "In the 3D view, draw a ridge's silhouette against the sky: its feet and heights come from the view's perspective (s4.1).");
-            if (tool_ == Tool::Ridge) ImGui::DragFloat("height (m)", &o.ridge_height_m, 5.0f, 10.0f, 5000.0f, "%.0f");
-            ImGui::DragFloat("width (px)", &o.ridge_width_px, 0.5f, 1.0f, 200.0f, "%.0f");
-            break;
-        case Tool::LayerPaste:
-            ImGui::TextWrapped(layer_paste_source_ ? "Click where the copy goes." : "Drag a rectangle to copy (s4.3).");
-            break;
-        case Tool::HoleFill:
-            ImGui::TextWrapped("Drag an ellipse to fill by quilting; pick one of three variants (s4.4).");
-            break;
-        case Tool::Noise:
-            ImGui::TextWrapped("Drag an ellipse for local fractal detail, or click for everywhere.");
-            ImGui::DragFloat("amplitude (m)", &o.noise_amplitude_m, 1.0f, 1.0f, 2000.0f, "%.0f");
-            ImGui::DragFloat("wavelength (px)", &o.noise_wavelength_px, 1.0f, 2.0f, 1024.0f, "%.0f");
-            break;
-    }
+    tool_->drawPanel();
     ImGui::End();
 }
 
@@ -187,9 +108,9 @@ void EditorApp::drawInspector() {
     ImGui::SetNextWindowPos(ImVec2(0, top + h), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(kLeftWidth, h), ImGuiCond_Always);
     ImGui::Begin("Inspector", nullptr, kPanelFlags);
-    if (const PointItem* p = view_->findPoint(selected_point_)) drawPointInspector(*p);
-    else if (const CurveItem* c = view_->findCurve(selected_curve_)) drawCurveInspector(*c);
-    else if (const PasteItem* q = view_->findPaste(selected_paste_)) drawPasteInspector(*q);
+    if (const PointItem* p = view_->findPoint(selection_.point)) drawPointInspector(*p);
+    else if (const CurveItem* c = view_->findCurve(selection_.curve)) drawCurveInspector(*c);
+    else if (const PasteItem* q = view_->findPaste(selection_.paste)) drawPasteInspector(*q);
     else {
         ImGui::TextDisabled("Nothing selected");
         ImGui::Text("%zu points, %zu curves, %zu pastes", view_->points.size(), view_->curves.size(), view_->pastes.size());
@@ -241,13 +162,13 @@ void EditorApp::drawCurveInspector(const CurveItem& item) {
         setCurve(next, "spline toggle");
     }
     ImGui::Text("Preset:");
-    for (int p = 0; p < 3; ++p) {
+    for (int p = 0; p < kCurvePresets; ++p) {
         ImGui::SameLine();
-        if (ImGui::SmallButton(presetName(static_cast<CurvePreset>(p)))) {
-            const CurvePreset keep = tool_options_.curve_preset;
-            tool_options_.curve_preset = static_cast<CurvePreset>(p);
+        if (ImGui::SmallButton(curvePresetName(static_cast<CurvePreset>(p)))) {
             CurveConstraint next = item.curve;
-            std::vector<CurveWidget> preset = presetWidgets(item.curve.course);
+            std::vector<CurveWidget> preset = presetWidgets(item.curve.course, static_cast<CurvePreset>(p),
+                                                            tool_options_.number("curve.height"),
+                                                            tool_options_.number("curve.reach"), *this);
             next.widgets.clear();
             for (const CurveWidget& old : item.curve.widgets) {
                 // The preset's shape at each existing widget's place.
@@ -259,7 +180,6 @@ void EditorApp::drawCurveInspector(const CurveItem& item) {
                              groundAtPixel(at.first, at.second);
                 next.widgets.push_back(w);
             }
-            tool_options_.curve_preset = keep;
             setCurve(next, "curve preset");
         }
     }
@@ -267,7 +187,7 @@ void EditorApp::drawCurveInspector(const CurveItem& item) {
         CurveWidget w = item.curve.widgets.empty() ? CurveWidget{} : item.curve.widgets.front();
         w.t = 0.25;
         const auto at = pointAtFraction(item.curve.course, w.t);
-        w.height_m = groundAtPixel(at.first, at.second) + tool_options_.curve_height_m;
+        w.height_m = groundAtPixel(at.first, at.second) + tool_options_.number("curve.height");
         EditRequest r;
         r.label = "add widget";
         r.run = [id, w](EditSession& s) { return s.addWidget(id, w); };
@@ -277,8 +197,8 @@ void EditorApp::drawCurveInspector(const CurveItem& item) {
         ImGui::PushID(static_cast<int>(i));
         CurveWidget w = item.curve.widgets[i];
         const bool open = ImGui::CollapsingHeader(("widget " + std::to_string(i)).c_str(),
-                                                  static_cast<int>(i) == selected_widget_ ? ImGuiTreeNodeFlags_DefaultOpen : 0);
-        if (ImGui::IsItemClicked()) selected_widget_ = static_cast<int>(i);
+                                                  static_cast<int>(i) == selection_.widget ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+        if (ImGui::IsItemClicked()) selection_.widget = static_cast<int>(i);
         if (open) {
             bool changed = false;
             const std::string k = "widget." + std::to_string(id) + "." + std::to_string(i) + ".";
@@ -323,7 +243,7 @@ void EditorApp::drawCurveInspector(const CurveItem& item) {
         ImGui::PopID();
     }
     if (ImGui::Button("Remove curve")) {
-        selected_widget_ = -1;
+        selection_.widget = -1;
         deleteSelection();
     }
 }
@@ -367,7 +287,7 @@ void EditorApp::drawPasteInspector(const PasteItem& item) {
             return uniteWindows(*removed, *added);
         };
         r.done = [this, id](const EditResult& res) {
-            if (res.status) selected_paste_ = *id;
+            if (res.status) selection_.paste = *id;
         };
         submit(std::move(r));
     }
@@ -391,7 +311,7 @@ void EditorApp::drawStatusBar() {
     char right[256];
     const bool unsaved = view_->edit_count != user_saved_count_;
     std::snprintf(right, sizeof right, "%s | %" PRIu64 " edits%s | undo %.1f MB | %s", save_path_.c_str(),
-                  view_->edit_count, unsaved ? " (unsaved)" : "", view_->undo_bytes / 1048576.0, toolName(tool_));
+                  view_->edit_count, unsaved ? " (unsaved)" : "", view_->undo_bytes / 1048576.0, tool_->name());
     ImGui::SameLine(std::max(ImGui::GetWindowWidth() - ImGui::CalcTextSize(right).x - 12.0f, 300.0f));
     ImGui::TextUnformatted(right);
     ImGui::End();

@@ -1,6 +1,6 @@
 // terrasynth_editor/edit_worker.h: the editor's one edit thread.
 //
-// The UI thread never synthesizes (issue 14). It submits EditRequests; one worker thread opens the
+// The UI thread never synthesizes. It submits EditRequests; one worker thread opens the
 // EditSession (edit_session.h), runs the requests in order against it, and after every edit that
 // changed heights hands the TerrainNode the session's new heightSource() and then invalidates the
 // changed level-0 window (in that order: a tile build planned in between reads the new source with

@@ -10,8 +10,8 @@
 //                                    it wants and every input has reached the screen (default 120 s)
 //   view aerial X Y WIDTH_M          top-down view centred on level-0 pixel (X, Y), WIDTH_M across
 //   view free X Y DISTANCE_M HEADING_DEG PITCH_DEG   orbit view around level-0 pixel (X, Y)
-//   tool NAME                        point curve paint freeze paste peak ridge holefill noise
-//                                    perspective
+//   tool NAME                        the tool of that name, as on its button (point, curve, ...;
+//                                    docs/editor.md lists them)
 //   set KEY VALUE                    a tool option (docs/editor.md lists them); the value is
 //                                    the rest of the line
 //   move X Y | press [BUTTON] | release [BUTTON] | click [BUTTON]     BUTTON: left right middle

@@ -1,9 +1,9 @@
-#include "terrasynth_plugin/hole_check.h"
+#include "terrasynth_host/hole_check.h"
 
 #include <cmath>
 #include <cstdlib>
 
-namespace terrasynth::plugin {
+namespace terrasynth::host {
 
 HoleCount countHoles(const osg::Image& image, const osg::Camera& camera, double ground_z, double radius_m,
                      const osg::Vec4& clear_colour, int tolerance) {
@@ -40,4 +40,4 @@ HoleCount countHoles(const osg::Image& image, const osg::Camera& camera, double 
     return count;
 }
 
-}  // namespace terrasynth::plugin
+}  // namespace terrasynth::host

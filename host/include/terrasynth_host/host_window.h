@@ -7,7 +7,7 @@
 //  - Dear ImGui (Debian libimgui-dev 1.86: GLFW + OpenGL2 backends, pre-1.87 input API) drawn last,
 //    over the 3D view. ImGui changes GL state behind OSG's back (client arrays, program, buffers),
 //    so after it draws the host tells OSG's state tracker that everything it cached is unknown
-//    (otherwise geometry merged later stops drawing: OpenSceneGraph issue 924);
+//    (otherwise OSG believes client arrays are still enabled and geometry merged later stops drawing);
 //  - input routed to ImGui first and to OSG (the viewer's event queue: manipulators, handlers) and
 //    the application only when ImGui does not want it. Whoever gets a mouse press owns the drag until
 //    the last button is released; whoever gets a key press gets its release;

@@ -1,4 +1,4 @@
-// terrasynth_plugin/hole_check.h: the "no holes" criterion of a rendered terrain frame.
+// terrasynth_host/hole_check.h: the "no holes" criterion of a rendered terrain frame.
 //
 // A pixel must show terrain when its view ray descends and meets the plane z = ground_z (at or below
 // every drawn sample, so the terrain is hit first) within radius_m metres horizontally of the eye.
@@ -11,7 +11,7 @@
 #include <osg/Image>
 #include <osg/Vec4>
 
-namespace terrasynth::plugin {
+namespace terrasynth::host {
 
 struct HoleCount {
     int holes = 0;      // pixels that must show terrain but show the clear colour
@@ -24,4 +24,4 @@ struct HoleCount {
 HoleCount countHoles(const osg::Image& image, const osg::Camera& camera, double ground_z, double radius_m,
                      const osg::Vec4& clear_colour, int tolerance = 15);
 
-}  // namespace terrasynth::plugin
+}  // namespace terrasynth::host

@@ -12,8 +12,8 @@ namespace terrasynth::host {
 
 // Renders ImGui's current frame (ImGui::Render must not have been called yet) over the viewport,
 // entering from OSG's GL state and leaving OSG's state tracker true to what GL then is, so the
-// next OSG draw re-applies what it needs (OpenSceneGraph issue 924: geometry merged after an
-// overlay drew would otherwise stop drawing, because OSG believes client arrays are still enabled).
+// next OSG draw re-applies what it needs (geometry merged after an overlay drew would otherwise
+// stop drawing, because OSG believes client arrays are still enabled).
 void drawImGuiOverOsg(osg::State& state);
 
 // Texture uploads for ImGui images, done while the overlay owns the GL state (unit 0 active).
