@@ -76,7 +76,7 @@ Result<TileData> readTileData(const HeightSource& source, const TileKey& key, co
     // The types are part of what is drawn: a rebuild whose heights are equal but whose types differ
     // (an editor's painting overlay) must still be swapped in.
     data.hash = hashTileData(data.heights, data.types);
-    return data;
+    return Result<TileData>(std::move(data));
 }
 
 TileBuild buildTileUnguarded(const HeightSource& source, const TileKey& key, const TileBuildSettings& s,
