@@ -1,7 +1,7 @@
 // Tile pipeline throughput and main-thread merge cost (issue 6 targets):
 //  - BM_TileThroughput: tiles of 256^2 quads (heights + mesh + detached OSG node) per second on a pool
-//    of 2 worker threads; target >= 20/s. Source: the synthesized Terrain when the runtime provides it
-//    (TERRASYNTH_BENCH_HAVE_TERRAIN), and a mirrored real DEM (isolates meshing and OSG cost).
+//    of 2 worker threads; target >= 20/s. Sources: the synthesized Terrain, and a mirrored real DEM
+//    (isolates meshing and OSG cost).
 //  - BM_FlightMerge/<metres>: a paced headless flight (UPDATE + CULL every frame, workers paging 256^2
 //    tiles); counters give the per-frame merge time (median, max; target max <= 4 ms), the tile cache
 //    and the process RSS (bounded: the 200 km flight must not need more than the 10 km one).
@@ -16,19 +16,18 @@
 #include <cstdlib>
 #include <thread>
 
+#include "headless_view.h"
 #include "terrasynth/heightfield_io.h"
-#include "terrasynth_plugin/headless_view.h"
-#include "terrasynth_plugin/terrain_node.h"
-#include "terrasynth_plugin/tile_builder.h"
-#include "terrasynth_plugin/worker_pool.h"
-#ifdef TERRASYNTH_BENCH_HAVE_TERRAIN
 #include "terrasynth/terrain.h"
-#endif
+#include "terrasynth_plugin/terrain_node.h"
+#include "tile_builder.h"
+#include "worker_pool.h"
 
 namespace {
 
 using namespace terrasynth;
 using namespace terrasynth::plugin;
+using terrasynth::test::HeadlessView;
 
 struct Dem {
     Heightfield field;
@@ -59,23 +58,20 @@ void throughput(benchmark::State& state, const HeightSource& source, double mpp)
     int failures = 0;
     for (auto _ : state) {
         state.PauseTiming();
-        std::vector<std::pair<TileKey, Heightfield>> jobs;
+        std::vector<std::pair<TileKey, std::shared_ptr<const TileData>>> jobs;
         for (int p = 0; p < 2; ++p) {
             const TileKey parent{1, offset + p, 7};  // fresh tiles every iteration: no cache can help
             const TileBuild built = buildTile(source, parent, s);
             failures += !built.status;
             if (!built.status) continue;
-            for (int c = 0; c < 4; ++c) {
-                const TileKey child = parent.child(c % 2, c / 2);
-                jobs.emplace_back(child, parentSamplesFromNode(*built.node, child, s));
-            }
+            for (int c = 0; c < 4; ++c) jobs.emplace_back(parent.child(c % 2, c / 2), built.data);
         }
         offset += 2;
         state.ResumeTiming();
         WorkerPool pool(2);
         std::atomic<int> failed{0};
         for (const auto& job : jobs)
-            pool.push({0.0, [&] { failed += !buildTile(source, job.first, s, &job.second).status; }});
+            pool.push({0.0, [&] { failed += !buildTile(source, job.first, s, job.second.get()).status; }});
         pool.waitIdle();
         failures += failed;
     }
@@ -87,7 +83,6 @@ void throughput(benchmark::State& state, const HeightSource& source, double mpp)
 void BM_TileThroughput_Dem(benchmark::State& state) { throughput(state, dem().source, dem().field.meters_per_pixel_x); }
 BENCHMARK(BM_TileThroughput_Dem)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-#ifdef TERRASYNTH_BENCH_HAVE_TERRAIN
 // A project over the shipped exemplars, with its database cached in the build tree.
 std::shared_ptr<Terrain> benchTerrain() {
     static std::shared_ptr<Terrain> terrain = [] {
@@ -115,7 +110,6 @@ void BM_TileThroughput_Terrain(benchmark::State& state) {
                terrain->metersPerPixel(0));
 }
 BENCHMARK(BM_TileThroughput_Terrain)->Unit(benchmark::kMillisecond)->UseRealTime();
-#endif
 
 size_t residentMb() {
     long pages = 0, resident = 0;
@@ -174,7 +168,6 @@ void flight(benchmark::State& state, const HeightSource& source, double mpp) {
 void BM_FlightMerge_Dem(benchmark::State& state) { flight(state, dem().source, dem().field.meters_per_pixel_x); }
 BENCHMARK(BM_FlightMerge_Dem)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Arg(10000)->Arg(200000);
 
-#ifdef TERRASYNTH_BENCH_HAVE_TERRAIN
 void BM_FlightMerge_Terrain(benchmark::State& state) {
     auto terrain = benchTerrain();
     if (!terrain) {
@@ -185,11 +178,10 @@ void BM_FlightMerge_Terrain(benchmark::State& state) {
            terrain->metersPerPixel(0));
 }
 BENCHMARK(BM_FlightMerge_Terrain)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Arg(10000);
-#endif
 
 }  // namespace
 
-// TerrainNode::heightAt (issue 15 target: <= 50 us): the finest resident tile's vertices at a random
+// TerrainNode::heightAt (issue 15 target: <= 50 us): the finest resident tile's data at a random
 // point, with 24 level-0 tiles and their coarser levels resident.
 void BM_HeightAt(benchmark::State& state) {
     TerrainNodeOptions o;

@@ -10,7 +10,7 @@
 #include "terrasynth/edit_session.h"
 #include "terrasynth_editor/edit_worker.h"
 #include "terrasynth_editor/latency.h"
-#include "terrasynth_plugin/headless_view.h"
+#include "headless_view.h"
 #include "test_support.h"
 
 namespace terrasynth::editor {
@@ -172,7 +172,7 @@ TEST(EditorWorker, TheTerrainRebuildsOnlyTilesTouchingTheChangedWindow) {
     o.view_radius_m = 2.0 * kSize * view->frame.meters_per_pixel;
     osg::ref_ptr<plugin::TerrainNode> node = new plugin::TerrainNode(worker->heightSource(), view->frame.meters_per_pixel, o);
     worker->attachTerrain(node);
-    plugin::HeadlessView headless(node.get(), 640, 360, 40.0);
+    test::HeadlessView headless(node.get(), 640, 360, 40.0);
     const GridFrame f = view->frame;
     const osg::Vec3d centre(f.worldX(kSize / 2), f.worldY(kSize / 2), 0.5 * (view->min_height_m + view->max_height_m));
     const osg::Vec3d eye = centre + osg::Vec3d(0.0, -12000.0, 25000.0);

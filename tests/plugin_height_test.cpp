@@ -9,7 +9,10 @@
 #include <random>
 #include <thread>
 
-#include "terrasynth_plugin/headless_view.h"
+#include <osg/Geometry>
+#include <osg/MatrixTransform>
+
+#include "headless_view.h"
 #include "terrasynth_plugin/terrain_node.h"
 #include "plugin_test_options.h"
 #include "test_support.h"
@@ -91,6 +94,50 @@ TEST(PluginHeight, TheFinestResidentTileAnswers) {
     EXPECT_TRUE(fx.heightAtPixel(200.5, 200.5).has_value());
 }
 
+// Tiles reordered for the vertex cache keep no grid order in their geometry; heightAt reads the
+// tiles' samples, so it answers there too, bit for bit as on tiles in grid order.
+TEST(PluginHeight, VertexCacheOrderLeavesTheSurfaceAlone) {
+    Fixture fx;
+    TerrainNodeOptions o = smallTiles();
+    o.optimize_order = true;
+    osg::ref_ptr<TerrainNode> optimized = new TerrainNode(fx.source, fx.spacing, o);
+    for (int level : {2, 0}) {
+        ASSERT_TRUE(fx.node->preload({0, 0, 128, 128}, level));
+        ASSERT_TRUE(optimized->preload({0, 0, 128, 128}, level));
+    }
+    // The same vertices in another order: vertex i is not grid vertex i.
+    auto vertices = [](const osg::ref_ptr<osg::Node>& tile) {
+        auto* transform = dynamic_cast<osg::MatrixTransform*>(tile.get());
+        EXPECT_NE(transform, nullptr);
+        const auto* v = static_cast<const osg::Vec3Array*>(transform->getChild(0)->asGeometry()->getVertexArray());
+        return std::vector<osg::Vec3f>(v->begin(), v->end());
+    };
+    std::vector<osg::Vec3f> grid = vertices(fx.node->tileNode({0, 1, 0})), reordered = vertices(optimized->tileNode({0, 1, 0}));
+    ASSERT_EQ(grid.size(), reordered.size());
+    EXPECT_NE(grid, reordered);
+    auto byPosition = [](const osg::Vec3f& a, const osg::Vec3f& b) { return a < b; };
+    std::sort(grid.begin(), grid.end(), byPosition);
+    std::sort(reordered.begin(), reordered.end(), byPosition);
+    EXPECT_EQ(grid, reordered);
+
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> coordinate(-10.0, 300.0);
+    for (int i = 0; i < 300; ++i) {
+        const double px = i < 100 ? std::floor(coordinate(rng)) : coordinate(rng), py = coordinate(rng);
+        int level = -1, optimized_level = -1;
+        const auto h = fx.node->heightAt(px * fx.spacing, -py * fx.spacing, &level);
+        const auto ho = optimized->heightAt(px * fx.spacing, -py * fx.spacing, &optimized_level);
+        ASSERT_EQ(h.has_value(), ho.has_value()) << "at " << px << "," << py;
+        if (!h) continue;
+        EXPECT_EQ(*ho, *h) << "at " << px << "," << py;
+        EXPECT_EQ(optimized_level, level);
+    }
+    const auto at_sample = optimized->heightAt(37 * fx.spacing, -90 * fx.spacing);
+    ASSERT_TRUE(at_sample.has_value());
+    EXPECT_EQ(*at_sample, fx.sample(37, 90));
+    EXPECT_NEAR(*optimized->heightAt(10.3 * fx.spacing, -20.6 * fx.spacing), fx.onTriangles(10.3, 20.6), 0.01);
+}
+
 TEST(PluginHeight, ExactFarFromTheOrigin) {
     Fixture fx;
     const int64_t far = 1000000;  // 10^6 pixels: 92,600 km east and south of the origin
@@ -105,7 +152,7 @@ TEST(PluginHeight, ExactFarFromTheOrigin) {
 
 TEST(PluginHeight, ConcurrentQueriesWhileTilesPageInAndOut) {
     Fixture fx;
-    HeadlessView view(fx.node.get());
+    test::HeadlessView view(fx.node.get());
     std::atomic<bool> stop{false};
     std::atomic<int> answered{0}, out_of_range{0};
     auto query = [&](unsigned seed) {
@@ -136,7 +183,7 @@ TEST(PluginHeight, ConcurrentQueriesWhileTilesPageInAndOut) {
 
 TEST(PluginPrefetch, BuildsTilesAheadOfTheCamera) {
     Fixture fx;
-    HeadlessView view(fx.node.get());
+    test::HeadlessView view(fx.node.get());
     const osg::Vec3d eye(5000, -5000, 4000), center(8000, -8000, 2000);
     // 90 km behind the camera (out of the frustum: the cull wants nothing there).
     const PixelWindow ahead{-700, -700, 64, 64};
@@ -162,7 +209,7 @@ TEST(PluginPrefetch, BuildsTilesAheadOfTheCamera) {
 TEST(PluginPrefetch, RefinementDistanceIsWhereTheCullDrawsEachLevel) {
     Fixture fx;
     EXPECT_EQ(fx.node->refinementDistance(0), 0.0);
-    HeadlessView view(fx.node.get());
+    test::HeadlessView view(fx.node.get());
     const osg::Vec3d eye(20000, -20000, 4500), center(26000, -26000, 1500);
     for (int f = 0; f < 3000; ++f) {
         view.frame(eye, center);

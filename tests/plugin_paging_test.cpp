@@ -10,7 +10,7 @@
 #include <set>
 #include <thread>
 
-#include "terrasynth_plugin/headless_view.h"
+#include "headless_view.h"
 #include "terrasynth_plugin/terrain_node.h"
 #include "plugin_test_options.h"
 #include "test_support.h"
@@ -22,13 +22,13 @@ struct Fixture {
     Heightfield dem;
     HeightSource source;
     osg::ref_ptr<TerrainNode> node;
-    std::unique_ptr<HeadlessView> view;
+    std::unique_ptr<test::HeadlessView> view;
 
     explicit Fixture(TerrainNodeOptions o, const char* stem = "orom_alaska") {
         dem = test::loadExemplarField(stem);
         source = mirroredExemplarSource(dem);
         node = new TerrainNode(source, dem.meters_per_pixel_x, o);
-        view = std::make_unique<HeadlessView>(node.get());
+        view = std::make_unique<test::HeadlessView>(node.get());
     }
     // Frames until the view has converged (workers run meanwhile).
     int settle(const osg::Vec3d& eye, const osg::Vec3d& center, int max_frames = 3000) {
@@ -51,6 +51,12 @@ void raiseBlock(const PixelWindow& edit, float raise, const PixelWindow& w, int 
             const int64_t gx = (w.x + x) * s, gy = (w.y + y) * s;
             if (gx < edit.x + edit.width && gx + s > edit.x && gy < edit.y + edit.height && gy + s > edit.y) h.at(x, y) += raise;
         }
+}
+
+// The level-k pixels a tile reads: its samples plus an apron of one mesh step on every side.
+PixelWindow readWindow(const TileLayout& layout, const TileKey& key, int mesh_step) {
+    const PixelWindow w = layout.window(key);
+    return {w.x - mesh_step, w.y - mesh_step, w.width + 2 * mesh_step, w.height + 2 * mesh_step};
 }
 
 bool isAncestor(TileKey a, const TileKey& b) {  // a strictly coarser and containing b
@@ -170,11 +176,10 @@ TEST(PluginPaging, EditsSwapOnlyTilesWhoseHeightsChange) {
     ASSERT_GE(fx.settle(eye, center), 0);
 
     size_t swapped = 0, kept = 0;
-    const TileBuildSettings settings{fx.node->layout(), o.mesh_step};
     for (size_t i = 0; i < drawn.size(); ++i) {
         const osg::ref_ptr<osg::Node> now = fx.node->tileNode(drawn[i]);
         if (!now) continue;  // refined away meanwhile
-        const PixelWindow w = tileReadWindow(drawn[i], settings);
+        const PixelWindow w = readWindow(fx.node->layout(), drawn[i], o.mesh_step);
         const int64_t s = int64_t{1} << drawn[i].level;
         const bool touched = w.x * s < edit.x + edit.width && (w.x + w.width) * s > edit.x &&
                              w.y * s < edit.y + edit.height && (w.y + w.height) * s > edit.y;

@@ -1,6 +1,6 @@
 // The osgdb_terrasynth module as osgDB loads it: found through OSG_LIBRARY_PATH for the .tsyn
-// extension, polite to foreign files, strict about its own options, and (once the runtime's Terrain
-// is built) reading a real project into a terrain that osgconv can write.
+// extension, polite to foreign files, strict about its own options, and reading a real project into
+// a terrain that osgconv can write.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -10,12 +10,10 @@
 #include <osgDB/ReadFile>
 #include <osgDB/Registry>
 
-#include "terrasynth_plugin/plugin_options.h"
-#include "test_support.h"
-#ifdef TERRASYNTH_TEST_HAVE_TERRAIN
 #include "terrasynth/project.h"
+#include "terrasynth_plugin/plugin_options.h"
 #include "terrasynth_plugin/terrain_node.h"
-#endif
+#include "test_support.h"
 
 namespace terrasynth::plugin {
 namespace {
@@ -76,7 +74,6 @@ TEST(PluginReader, BadOptionValuesAreReportedByName) {
     }
 }
 
-#ifdef TERRASYNTH_TEST_HAVE_TERRAIN
 TEST(PluginReader, ReadsAProjectAndOsgconvWritesIt) {
     const std::string dir = test::scratchDir("plugin_reader_project");
     Project p;
@@ -132,7 +129,6 @@ TEST(PluginReader, ReadsAProjectAndOsgconvWritesIt) {
     ASSERT_TRUE(written.valid());
     EXPECT_GT(written->asGroup()->getNumChildren(), 0u);
 }
-#endif
 
 }  // namespace
 }  // namespace terrasynth::plugin

@@ -2,12 +2,8 @@
 // (terrain_shader.cpp) blends towards it as the tile nears the distance at which the parent takes
 // over, so LOD switches do not pop.
 #include <cmath>
-#include <limits>
 
-#include <osg/Geometry>
-#include <osg/MatrixTransform>
-
-#include "terrasynth_plugin/tile_builder.h"
+#include "tile_builder.h"
 
 namespace terrasynth::plugin {
 
@@ -35,26 +31,6 @@ std::vector<float> parentSurfaceHeights(const TileMesh& mesh, const Heightfield&
         }
         out[v] = v >= mesh.skirt_first_vertex && mesh.skirt_first_vertex > 0 ? h - skirt_depth_m : h;
     }
-    return out;
-}
-
-Heightfield parentSamplesFromNode(const osg::Node& parent_node, const TileKey& child, const TileBuildSettings& s) {
-    const osg::Vec3Array* vertices = tileVertices(parent_node);
-    if (!vertices) return {};
-    const int half = s.layout.tile_size / 2;
-    const double spacing = s.layout.spacing(child.level + 1);
-    const int64_t x0 = (child.x - 2 * child.parent().x) * half, y0 = (child.y - 2 * child.parent().y) * half;
-    Heightfield out(half + 1, half + 1, spacing, std::numeric_limits<float>::lowest());
-    // Skirt vertices repeat a border vertex lower down: the top surface is the highest per sample.
-    for (const osg::Vec3f& v : *vertices) {
-        const int64_t col = std::llround(v.x() / spacing) - x0, row = std::llround(-v.y() / spacing) - y0;
-        if (col < 0 || row < 0 || col > half || row > half) continue;
-        float& h = out.at(static_cast<int>(col), static_cast<int>(row));
-        h = std::max(h, v.z());
-    }
-    for (int row = 0; row <= half; row += s.mesh_step)
-        for (int col = 0; col <= half; col += s.mesh_step)
-            if (out.at(col, row) == std::numeric_limits<float>::lowest()) return {};  // not our layout
     return out;
 }
 

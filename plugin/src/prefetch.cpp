@@ -2,6 +2,10 @@
 // planBuilds (tile_merge.cpp) queues the requests after everything the cull wants.
 #include "terrasynth_plugin/terrain_node.h"
 
+#include <algorithm>
+
+#include "tile_store.h"
+
 namespace terrasynth::plugin {
 
 void TerrainNode::prefetch(const PixelWindow& region, int level) {
@@ -10,9 +14,9 @@ void TerrainNode::prefetch(const PixelWindow& region, int level) {
     std::lock_guard<std::mutex> lock(mutex_);
     const unsigned frame = cull_frame_ == ~0u ? 0 : cull_frame_;
     for (const TileKey& key : tilesCovering(region, level)) {
-        auto t = tiles_.find(key);
-        if (t != tiles_.end() && !t->second.dirty) {
-            t->second.last_used_frame = std::max(t->second.last_used_frame, frame);  // still wanted: keep it
+        ResidentTile* tile = store_->find(key);
+        if (tile && !tile->dirty) {
+            tile->last_used_frame = std::max(tile->last_used_frame, frame);  // still wanted: keep it
             continue;
         }
         prefetch_[key] = frame;

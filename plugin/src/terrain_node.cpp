@@ -1,13 +1,16 @@
 // TerrainNode: construction, traversal dispatch, editing hooks, preload and statistics.
-// The cull-time selection is in tile_selection.cpp, the UPDATE-time merge in tile_merge.cpp.
+// The cull-time selection is in tile_selection.cpp, the UPDATE-time merge in tile_merge.cpp, the
+// surface height in surface_height.cpp.
 #include "terrasynth_plugin/terrain_node.h"
 
 #include <algorithm>
-#include <atomic>
 #include <string>
 #include <thread>
 
 #include <osgUtil/CullVisitor>
+
+#include "tile_loader.h"
+#include "tile_store.h"
 
 namespace terrasynth::plugin {
 
@@ -30,22 +33,23 @@ Status validateOptions(const TerrainNodeOptions& o) {
 }
 
 TerrainNode::TerrainNode(HeightSource source, double meters_per_pixel, const TerrainNodeOptions& options)
-    : options_(options), source_(std::move(source)) {
+    : options_(options), source_(std::move(source)), store_(std::make_unique<TileStore>()) {
     const Status valid = validateOptions(options);
     TERRASYNTH_REQUIRE(valid.isOk(), valid.message().c_str());
     TERRASYNTH_REQUIRE(meters_per_pixel > 0.0, "meters_per_pixel must be positive");
     layout_.tile_size = options.tile_size;
     layout_.meters_per_pixel = meters_per_pixel;
-    build_settings_.layout = layout_;
-    build_settings_.mesh_step = options.mesh_step;
-    build_settings_.skirt_extra_spacings = options.skirt_extra_spacings;
-    build_settings_.optimize_order = options.optimize_order;
-    build_settings_.geomorph = options.geomorph;
-    build_settings_.max_level = options.max_level;
+    TileBuildSettings settings;
+    settings.layout = layout_;
+    settings.mesh_step = options.mesh_step;
+    settings.skirt_extra_spacings = options.skirt_extra_spacings;
+    settings.optimize_order = options.optimize_order;
+    settings.geomorph = options.geomorph;
+    settings.max_level = options.max_level;
     if (options_.view_radius_m <= 0.0) options_.view_radius_m = layout_.tileMeters(options_.max_level);
     const int threads = options.threads > 0 ? options.threads
                                             : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    pool_ = std::make_unique<WorkerPool>(threads);
+    loader_ = std::make_unique<TileLoader>(settings, threads);
 
     // Culling is ours (per tile); the node itself has no meaningful bound in an unbounded world.
     setCullingActive(false);
@@ -57,7 +61,7 @@ TerrainNode::TerrainNode(HeightSource source, double meters_per_pixel, const Ter
     installTerrainProgram(*getOrCreateStateSet());
 }
 
-TerrainNode::~TerrainNode() { pool_.reset(); }
+TerrainNode::~TerrainNode() { loader_.reset(); }
 
 void TerrainNode::traverse(osg::NodeVisitor& nv) {
     switch (nv.getVisitorType()) {
@@ -151,18 +155,19 @@ std::optional<std::pair<float, float>> TerrainNode::heightRange(const PixelWindo
     for (int level = options_.min_level; level <= options_.max_level; ++level) {
         std::optional<std::pair<float, float>> range;
         for (const TileKey& key : tilesCovering(region, level)) {
-            auto it = tiles_.find(key);
-            if (it == tiles_.end()) continue;
-            if (!range) range = std::make_pair(it->second.min_height, it->second.max_height);
-            range->first = std::min(range->first, it->second.min_height);
-            range->second = std::max(range->second, it->second.max_height);
+            const ResidentTile* tile = store_->find(key);
+            if (!tile) continue;
+            const TileData& data = *tile->data;
+            if (!range) range = std::make_pair(data.min_height, data.max_height);
+            range->first = std::min(range->first, data.min_height);
+            range->second = std::max(range->second, data.max_height);
         }
         if (range) return range;
     }
     return std::nullopt;
 }
 bool TerrainNode::touches(const TileKey& key, const PixelWindow& r) const {
-    const PixelWindow w = tileReadWindow(key, build_settings_);
+    const PixelWindow w = tileReadWindow(key, loader_->settings());
     // Level-k sample X reads level-0 pixels [X*2^k, (X+1)*2^k).
     const int64_t s = int64_t{1} << key.level;
     const int64_t x0 = w.x * s, y0 = w.y * s, x1 = (w.x + w.width) * s, y1 = (w.y + w.height) * s;
@@ -183,8 +188,8 @@ size_t TerrainNode::tilesAwaitingRebuild(uint64_t generation) const {
     size_t n = 0;
     for (const TileKey& key : drawn_keys_) {
         // A dirty tile built at or after `generation` already shows that edit (a later one marked it).
-        auto it = tiles_.find(key);
-        n += it != tiles_.end() && it->second.dirty && it->second.generation < generation;
+        const ResidentTile* tile = store_->find(key);
+        n += tile && tile->dirty && tile->generation < generation;
     }
     return n;
 }
@@ -198,24 +203,19 @@ void TerrainNode::invalidateLocked(const Invalidation& inv) {
     invalidations_.push_back(inv);
     if (invalidations_.size() > 1024) invalidations_.erase(invalidations_.begin());
     failed_.clear();
-    for (auto it = tiles_.begin(); it != tiles_.end();) {
-        if (!inv.everything && !touches(it->first, inv.region)) {
-            ++it;
-            continue;
-        }
+    std::vector<TileKey> gone;
+    store_->forEach([&](const TileKey& key, ResidentTile& tile) {
+        if (!inv.everything && !touches(key, inv.region)) return;
         // Tiles in view keep being drawn until their rebuild is swapped in; the rest just go.
-        const bool in_view = cull_frame_ != ~0u && it->second.last_used_frame + 1 >= cull_frame_;
+        const bool in_view = cull_frame_ != ~0u && tile.last_used_frame + 1 >= cull_frame_;
         if (in_view) {
-            it->second.dirty = true;
+            tile.dirty = true;
             ++stats_.tiles_invalidated;
-            ++it;
         } else {
-            resident_bytes_ -= it->second.bytes;
-            released_.emplace_back(cull_frame_, it->second.node);
-            removeChild(it->second.node.get());
-            it = tiles_.erase(it);
+            gone.push_back(key);
         }
-    }
+    });
+    for (const TileKey& key : gone) release(store_->remove(key), cull_frame_);
     // Start the rebuilds of the edited tiles on screen now rather than after the next cull has
     // wanted them and the UPDATE after it has planned them: that waited one to two frames (40-80 ms
     // while the editor drags on llvmpipe). The next UPDATE re-plans as usual.
@@ -240,15 +240,7 @@ Status TerrainNode::preload(const PixelWindow& region, int level) {
         types = type_source_;
         generation = generation_;
     }
-    // Own short-lived threads: the pool's queue belongs to the frame loop.
-    std::vector<TileBuild> builds(keys.size());
-    std::atomic<size_t> next{0};
-    auto work = [&] {
-        for (size_t i = next++; i < keys.size(); i = next++) builds[i] = buildTile(source, keys[i], build_settings_, nullptr, &types);
-    };
-    std::vector<std::thread> threads;
-    for (int t = 0; t < pool_->threadCount(); ++t) threads.emplace_back(work);
-    for (auto& t : threads) t.join();
+    std::vector<TileBuild> builds = loader_->buildNow(keys, source, types);
 
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto& b : builds)
@@ -266,17 +258,19 @@ Status TerrainNode::preload(const PixelWindow& region, int level) {
 TerrainStats TerrainNode::stats() const {
     std::lock_guard<std::mutex> lock(mutex_);
     TerrainStats s = stats_;
-    s.resident_tiles = tiles_.size();
-    s.resident_bytes = resident_bytes_;
-    s.pending_builds = building_.size();
-    s.waiting_merge = completed_.size();
+    s.resident_tiles = store_->size();
+    s.resident_bytes = store_->bytes();
+    s.pending_builds = loader_->busyCount();
+    s.waiting_merge = loader_->finishedCount();
     s.wanted_tiles = wanted_.size();
     s.drawn_tiles = drawn_.size();
     s.prefetch_requests = 0;
-    for (const auto& [key, frame] : prefetch_) s.prefetch_requests += tiles_.count(key) == 0;
-    const double n = static_cast<double>(std::max<uint64_t>(1, stats_.tiles_built));
-    s.mean_build_ms = build_ms_sum_ / n;
-    s.mean_heights_ms = heights_ms_sum_ / n;
+    for (const auto& [key, frame] : prefetch_) s.prefetch_requests += store_->find(key) == nullptr;
+    const TileLoader::Totals totals = loader_->totals();
+    s.tiles_built = totals.built;
+    const double n = static_cast<double>(std::max<uint64_t>(1, totals.built));
+    s.mean_build_ms = totals.build_ms / n;
+    s.mean_heights_ms = totals.heights_ms / n;
     return s;
 }
 
@@ -293,11 +287,11 @@ void TerrainNode::resetMergeStats() {
 
 bool TerrainNode::settled() const {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!building_.empty() || !completed_.empty()) return false;
+    if (loader_->busyCount() != 0 || loader_->finishedCount() != 0) return false;
     for (const auto& [key, priority] : wanted_) {
         if (failed_.count(key)) continue;
-        auto it = tiles_.find(key);
-        if (it == tiles_.end() || it->second.dirty) return false;
+        const ResidentTile* tile = store_->find(key);
+        if (!tile || tile->dirty) return false;
     }
     return true;
 }
@@ -309,8 +303,8 @@ std::vector<TileKey> TerrainNode::drawnTiles() const {
 
 osg::ref_ptr<osg::Node> TerrainNode::tileNode(const TileKey& key) const {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = tiles_.find(key);
-    return it == tiles_.end() ? nullptr : it->second.node;
+    const ResidentTile* tile = store_->find(key);
+    return tile ? tile->node : nullptr;
 }
 
 }  // namespace terrasynth::plugin

@@ -4,7 +4,7 @@
 #include <osg/Geometry>
 #include <osg/MatrixTransform>
 
-#include "terrasynth_plugin/tile_builder.h"
+#include "tile_builder.h"
 
 namespace terrasynth::plugin {
 
@@ -54,13 +54,6 @@ osg::ref_ptr<osg::Node> makeTileNode(const TileMesh& mesh, double origin_x, doub
     transform->getBound();
     if (bytes) *bytes = nv * 2 * sizeof(osg::Vec3f) + mesh.indices.size() * sizeof(uint32_t) + extra;
     return transform;
-}
-
-const osg::Vec3Array* tileVertices(const osg::Node& node) {
-    const auto* transform = dynamic_cast<const osg::MatrixTransform*>(&node);
-    if (!transform || transform->getNumChildren() != 1) return nullptr;
-    const osg::Geometry* geometry = transform->getChild(0)->asGeometry();
-    return geometry ? dynamic_cast<const osg::Vec3Array*>(geometry->getVertexArray()) : nullptr;
 }
 
 }  // namespace terrasynth::plugin

@@ -6,6 +6,7 @@
 #include <osgUtil/CullVisitor>
 
 #include "terrasynth_plugin/terrain_node.h"
+#include "tile_store.h"
 
 namespace terrasynth::plugin {
 namespace {
@@ -49,9 +50,9 @@ void TerrainNode::want(const TileKey& key, double priority) {
 bool TerrainNode::wantDrawnDirtyTiles() {
     bool any = false;
     for (const TileKey& key : drawn_keys_) {
-        auto it = tiles_.find(key);
-        if (it == tiles_.end() || !it->second.dirty) continue;
-        want(key, kDirtyPriority + it->second.drawn_distance);
+        const ResidentTile* tile = store_->find(key);
+        if (!tile || !tile->dirty) continue;
+        want(key, kDirtyPriority + tile->drawn_distance);
         any = true;
     }
     return any;
@@ -106,18 +107,18 @@ void TerrainNode::cullFrom(osgUtil::CullVisitor& cv, unsigned frame) {
             const double x0 = layout_.westX(key), y1 = layout_.northY(key);
             const double d = horizontalDistance(eye.x(), eye.y(), x0, y1 - m, x0 + m, y1);
             if (d > load_radius) continue;
-            auto it = tiles_.find(key);
-            if (it == tiles_.end()) {
+            ResidentTile* tile = store_->find(key);
+            if (!tile) {
                 want(key, kRootPriority + d);
                 continue;
             }
-            it->second.last_used_frame = frame;
-            if (d <= radius) selectTile(cv, key, it->second);
+            tile->last_used_frame = frame;
+            if (d <= radius) selectTile(cv, key, *tile);
         }
     }
 }
 
-void TerrainNode::selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile& tile) {
+void TerrainNode::selectTile(osgUtil::CullVisitor& cv, const TileKey& key, ResidentTile& tile) {
     const unsigned frame = cull_frame_;
     tile.last_used_frame = frame;
     const osg::Vec3d eye = cv.getEyeLocal();
@@ -133,19 +134,19 @@ void TerrainNode::selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile&
     const bool refine = key.level > options_.min_level &&
                         layout_.spacing(key.level) * screenPixelsPerMeter(cv, d) > options_.pixel_error;
     if (refine) {
-        Tile* children[4] = {};
+        ResidentTile* children[4] = {};
         bool all = true;
         for (int j = 0; j < 2; ++j) {
             for (int i = 0; i < 2; ++i) {
                 const TileKey ck = key.child(i, j);
-                auto it = tiles_.find(ck);
-                if (it == tiles_.end()) {
+                ResidentTile* child = store_->find(ck);
+                if (!child) {
                     all = false;
                     want(ck, d / layout_.tileMeters(ck.level));
                 } else {
                     // Keep the partial set: evicting it would restart the refinement.
-                    it->second.last_used_frame = frame;
-                    children[2 * j + i] = &it->second;
+                    child->last_used_frame = frame;
+                    children[2 * j + i] = child;
                 }
             }
         }
@@ -161,8 +162,8 @@ void TerrainNode::selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile&
     drawn_.push_back(tile.node);
     drawn_keys_.push_back(key);
     stats_.drawn_triangles += tile.triangles;
-    stats_.drawn_min_height = std::min(stats_.drawn_min_height, tile.min_height);
-    stats_.drawn_max_height = std::max(stats_.drawn_max_height, tile.max_height);
+    stats_.drawn_min_height = std::min(stats_.drawn_min_height, tile.data->min_height);
+    stats_.drawn_max_height = std::max(stats_.drawn_max_height, tile.data->max_height);
 }
 
 }  // namespace terrasynth::plugin

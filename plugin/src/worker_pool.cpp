@@ -1,4 +1,4 @@
-#include "terrasynth_plugin/worker_pool.h"
+#include "worker_pool.h"
 
 #include <sys/resource.h>
 #include <sys/syscall.h>

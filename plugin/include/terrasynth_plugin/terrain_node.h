@@ -1,18 +1,23 @@
 // terrasynth_plugin/terrain_node.h: the unbounded quadtree terrain as one OSG node.
 //
-// Data model vs render model (osgEarth REX style):
-//  - CULL: picks the tiles to draw by screen-space error from the camera, starting from the root
-//    tiles (level max_level) within view_radius of the eye, so the world follows the camera without
-//    bounds. A tile is refined only once all four children are resident; until then it is drawn
-//    itself (no holes) and its missing children are wanted. Skirts hide the LOD steps (no cracks).
-//  - Worker threads (WorkerPool): each wanted tile is built by buildTile (heights -> mesh -> detached
-//    OSG node), nearest first; the queue is re-planned every frame so tiles left behind are dropped.
-//  - UPDATE: finished tiles are attached (or swapped for a rebuilt tile) under a per-frame cap on the
-//    count and on the measured main-thread time; then least-recently drawn tiles are evicted until the
-//    resident memory fits the cache budget.
+// Data model vs render model (osgEarth REX style). Every resident tile keeps the plain data it was
+// built from (its key and its height samples, apron included, and type ids) beside the OSG geometry
+// drawn from it; surface heights, geomorph targets and edit comparisons read the data, never the
+// geometry. The node does the cull and the update itself and leaves building and residency to
+// collaborators private to the plugin (a loader, a store):
+//  - CULL: picks the tiles to draw by screen-space error from the camera, starting from the
+//    root tiles (level max_level) within view_radius of the eye, so the world follows the camera
+//    without bounds. A tile is refined only once all four children are resident; until then it is
+//    drawn itself (no holes) and its missing children are wanted. Skirts hide the LOD steps (no cracks).
+//  - The loader: worker threads build each wanted tile (heights -> data -> mesh -> detached OSG
+//    node), nearest first; the queue is re-planned every frame so tiles left behind are dropped.
+//  - UPDATE: finished tiles are attached (or swapped for a rebuilt tile) under a per-frame cap
+//    on the count and on the measured main-thread time.
+//  - The store: the resident tiles and their memory; its unloader policy then picks the least
+//    recently drawn tiles to evict until the resident memory fits the cache budget.
 // Editing: invalidate() marks the tiles whose heights may change; they are rebuilt in the background
 // (those drawn first, the coarser ones above them after) and swapped whole (new geometry, never
-// DYNAMIC edits) only when their heights actually differ.
+// DYNAMIC edits) only when their samples actually differ.
 //
 // Threading: OSG calls traverse() from the update and cull threads (never both at once for one
 // frame in osgViewer, but a mutex guards the shared state anyway); the other public methods are
@@ -21,13 +26,14 @@
 // class name of osg::Group so osgconv stores them as a plain group of transforms and geometries.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include <osg/Group>
@@ -35,15 +41,18 @@
 
 #include "terrasynth_plugin/height_source.h"
 #include "terrasynth_plugin/terrain_look.h"
-#include "terrasynth_plugin/tile_builder.h"
 #include "terrasynth_plugin/tile_key.h"
-#include "terrasynth_plugin/worker_pool.h"
 
 namespace osgUtil {
 class CullVisitor;
 }
 
 namespace terrasynth::plugin {
+
+struct ResidentTile;
+struct TileBuild;
+class TileLoader;
+class TileStore;
 
 struct TerrainNodeOptions {
     int tile_size = 256;      // quads per tile side (tile_size + 1 samples); 8..2048
@@ -56,8 +65,9 @@ struct TerrainNodeOptions {
     // 0 = 3 root tiles. Root tiles within 1.5x of it are loaded ahead of the camera.
     double view_radius_m = 0.0;
     int threads = 0;          // worker threads; 0 = hardware threads
-    // Resident tile memory budget (client-side vertex + index bytes, MiB). Tiles drawn in the last
-    // frame are never evicted, so a view needing more overshoots rather than showing holes.
+    // Resident tile memory budget (MiB): client-side vertex and index bytes plus the height samples
+    // each tile keeps. Tiles drawn in the last frame are never evicted, so a view needing more
+    // overshoots rather than showing holes.
     double cache_mb = 768.0;
     int max_merges_per_frame = 16;  // tiles attached per UPDATE at most
     double merge_budget_ms = 2.0;   // main-thread time per UPDATE for attaching tiles
@@ -173,33 +183,16 @@ protected:
     ~TerrainNode() override;
 
 private:
-    struct Tile {
-        osg::ref_ptr<osg::Node> node;
-        osg::BoundingBox box;
-        float min_height = 0.0f, max_height = 0.0f;
-        osg::ref_ptr<const osg::Vec3Array> vertices;  // for heightAt
-        uint64_t hash = 0;
-        uint64_t generation = 0;
-        size_t bytes = 0;
-        size_t triangles = 0;
-        unsigned last_used_frame = 0;
-        double drawn_distance = 0.0;  // from the camera when the last cull drew it (m)
-        bool dirty = false;
-    };
     struct Invalidation {
         uint64_t generation;
         PixelWindow region;  // level 0, margin included
         bool everything;
     };
-    struct Building {
-        uint64_t ticket;  // which submission owns the key (re-planning may re-submit it)
-        bool started;
-    };
 
     // CULL
     void cull(osgUtil::CullVisitor& cv);
     void cullFrom(osgUtil::CullVisitor& cv, unsigned frame);  // roots around the eye, then selectTile
-    void selectTile(osgUtil::CullVisitor& cv, const TileKey& key, Tile& tile);
+    void selectTile(osgUtil::CullVisitor& cv, const TileKey& key, ResidentTile& tile);
     void want(const TileKey& key, double priority);
     // Wants the tiles the last cull drew that an edit has just marked dirty, as that cull would
     // have; true when there were any.
@@ -209,14 +202,13 @@ private:
     void update(unsigned frame);
     void mergeCompleted(unsigned frame);
     void attach(TileBuild&& build);
-    void swapIn(Tile& tile, TileBuild&& build);  // a rebuild of a resident tile (unless unchanged)
+    void swapIn(ResidentTile& tile, TileBuild&& build);  // a rebuild of a resident tile (unless unchanged)
     void planBuilds();
     void evict(unsigned frame);
+    // Takes a tile's node out of the children, kept alive until no draw thread can hold it.
+    void release(osg::ref_ptr<osg::Node> node, unsigned frame);
     // Children = the tiles the last cull drew (what writers and intersection visitors see).
     void syncChildren();
-    // Workers
-    void runBuild(const TileKey& key, uint64_t ticket, uint64_t generation, const HeightSource& source,
-                  const TypeSource& types, const osg::Node* parent);
     std::vector<TileKey> tilesCovering(const PixelWindow& level0_region, int level) const;
     bool staleLocked(const TileKey& key, uint64_t generation) const;
     void invalidateLocked(const Invalidation& inv);
@@ -224,18 +216,14 @@ private:
 
     TerrainNodeOptions options_;
     TileLayout layout_;
-    TileBuildSettings build_settings_;
 
-    mutable std::mutex mutex_;  // everything below
+    mutable std::mutex mutex_;  // everything below but the loader, which has its own
     HeightSource source_;
     TypeSource type_source_;
-    std::unordered_map<TileKey, Tile, TileKeyHash> tiles_;
+    std::unique_ptr<TileStore> store_;                             // the resident tiles
     std::unordered_map<TileKey, unsigned, TileKeyHash> prefetch_;  // key -> frame of the request
     std::unordered_map<TileKey, double, TileKeyHash> wanted_;      // by the last cull
-    std::unordered_map<TileKey, Building, TileKeyHash> building_;  // queued, running or built
-    uint64_t next_ticket_ = 0;
     std::unordered_set<TileKey, TileKeyHash> failed_;              // not retried until an edit
-    std::vector<TileBuild> completed_;
     std::vector<Invalidation> invalidations_;
     std::vector<std::pair<unsigned, osg::ref_ptr<osg::Node>>> released_;  // kept alive a few frames
     std::vector<osg::ref_ptr<osg::Node>> drawn_;
@@ -243,19 +231,17 @@ private:
     unsigned cull_frame_ = ~0u;
     unsigned frame_counter_ = 0;
     uint64_t generation_ = 0;
-    size_t resident_bytes_ = 0;
     double merge_cost_ema_ms_ = 0.2;
     TerrainStats stats_;
     std::vector<double> merge_times_;
     // Per-cull state carrying ts_lod_k, kept alive while a draw thread may still use it.
     std::vector<std::pair<unsigned, osg::ref_ptr<osg::StateSet>>> lod_states_;
-    double build_ms_sum_ = 0.0, heights_ms_sum_ = 0.0;
     double pixels_per_meter_at_1m_ = 0.0;  // of the last cull's camera (LOD scale included)
     TerrainLook look_;
     mutable std::mutex home_mutex_;   // home_bound_ (computeBound must not wait for mutex_)
     osg::BoundingSphere home_bound_;  // valid once setHomeExtent was called
 
-    std::unique_ptr<WorkerPool> pool_;  // last: destroyed (joined) first
+    std::unique_ptr<TileLoader> loader_;  // last: its workers are joined first
 };
 
 }  // namespace terrasynth::plugin

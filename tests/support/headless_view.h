@@ -1,8 +1,9 @@
-// terrasynth_plugin/headless_view.h: UPDATE + CULL of a scene without any graphics context.
+// headless_view.h: UPDATE + CULL of a scene without any graphics context (tests and benchmarks).
 //
-// Drives a TerrainNode exactly as a viewer's frame loop does (update traversal, then cull with a
-// perspective camera), minus the draw: for tests and benchmarks of tile selection, paging, merge
-// budgets and memory that must run where there is no display. Not thread-safe; one per thread.
+// Drives a scene such as a plugin::TerrainNode exactly as a viewer's frame loop does (update
+// traversal, then cull with a perspective camera), minus the draw: for tests and benchmarks of tile
+// selection, paging, merge budgets and memory that must run where there is no display. Not
+// thread-safe; one per thread.
 #pragma once
 
 #include <osg/FrameStamp>
@@ -10,7 +11,7 @@
 #include <osg/ref_ptr>
 #include <osgUtil/SceneView>
 
-namespace terrasynth::plugin {
+namespace terrasynth::test {
 
 class HeadlessView {
 public:
@@ -25,4 +26,4 @@ private:
     unsigned frame_number_ = 0;
 };
 
-}  // namespace terrasynth::plugin
+}  // namespace terrasynth::test

@@ -1,8 +1,8 @@
-#include "terrasynth_plugin/headless_view.h"
+#include "headless_view.h"
 
 #include <osg/State>
 
-namespace terrasynth::plugin {
+namespace terrasynth::test {
 
 HeadlessView::HeadlessView(osg::Node* scene, int width, int height, double fovy_deg)
     : view_(new osgUtil::SceneView), stamp_(new osg::FrameStamp) {
@@ -26,4 +26,4 @@ void HeadlessView::frame(const osg::Vec3d& eye, const osg::Vec3d& center) {
     ++frame_number_;
 }
 
-}  // namespace terrasynth::plugin
+}  // namespace terrasynth::test

@@ -1,13 +1,16 @@
-// terrasynth_plugin/tile_builder.h: one quadtree tile from heights to a detached OSG subgraph.
+// tile_builder.h: one quadtree tile from heights to its data model and a detached OSG subgraph.
 //
 // This is the whole per-tile job a worker thread runs (osgEarth REX style "create the tile model off
-// the draw thread, merge it later"): fetch the tile's window (plus an apron so normals are central
-// differences across tile edges), mesh it with skirts (terrasynth/mesh.h), and wrap the mesh in an
-// osg::MatrixTransform + osg::Geometry that no scene graph references yet, so building it touches no
-// shared state. The UPDATE traversal later only attaches or swaps the finished node.
+// the draw thread, merge it later"): read the tile's window (plus an apron so normals are central
+// differences across tile edges) into its TileData, mesh it with skirts (terrasynth/mesh.h), and
+// wrap the mesh in an osg::MatrixTransform + osg::Geometry that no scene graph references yet, so
+// building it touches no shared state. The UPDATE traversal later only attaches or swaps the
+// finished node.
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include <osg/BoundingBox>
 #include <osg/Node>
@@ -17,6 +20,7 @@
 #include "terrasynth_plugin/height_source.h"
 #include "terrasynth_plugin/terrain_look.h"
 #include "terrasynth_plugin/tile_key.h"
+#include "tile_data.h"
 
 namespace terrasynth::plugin {
 
@@ -29,7 +33,7 @@ struct TileBuildSettings {
     float skirt_extra_spacings = 2.0f;
     // Reorder for the vertex cache (meshoptimizer); costs build time, saves draw time.
     bool optimize_order = false;
-    // Geomorphing: also read the parent level's samples under the tile (a quarter of the tile's
+    // Geomorphing: also take the parent level's samples under the tile (a quarter of the tile's
     // samples) and give every vertex its height on the parent's surface. Tiles at max_level have no
     // parent and do not morph. Needs an even tile_size / mesh_step.
     bool geomorph = false;
@@ -40,15 +44,13 @@ struct TileBuild {
     TileKey key;
     uint64_t generation = 0;  // the edit generation the heights were read at (set by the caller)
     Status status = Status::ok();
-    // MatrixTransform (world offset of the tile's north-west corner, in double) over one Geometry
-    // whose vertices are relative to that corner, so float precision holds anywhere in an unbounded
-    // world. Bounds are already computed.
+    // The data model: what the tile was built from. Null when `status` is an error.
+    std::shared_ptr<const TileData> data;
+    // The render model: a MatrixTransform (world offset of the tile's north-west corner, in double)
+    // over one Geometry whose vertices are relative to that corner, so float precision holds anywhere
+    // in an unbounded world. Bounds are already computed.
     osg::ref_ptr<osg::Node> node;
     osg::BoundingBox box;      // world frame, including the skirt
-    float min_height = 0.0f, max_height = 0.0f;  // of the meshed samples
-    // FNV-1a of the window's bits, apron included, and of the type ids when a type source was read:
-    // equal hash = same tile.
-    uint64_t heights_hash = 0;
     size_t bytes = 0;          // client-side vertex and index memory of the node
     size_t triangles = 0;      // drawn per frame when the tile is drawn (skirts included)
     double heights_ms = 0.0, mesh_ms = 0.0, osg_ms = 0.0;
@@ -59,17 +61,12 @@ struct TileBuild {
 PixelWindow tileReadWindow(const TileKey& key, const TileBuildSettings& settings);
 
 // Builds one tile. Thread-safe if `source` (and `types`) are. Errors (source failure, wrong window
-// size) come back in `status` with the tile key in the message. For geomorphing, `parent_samples`
-// (from parentSamplesFromNode) saves reading the parent level from `source`; null = read it. With
-// `types`, every vertex carries its sample's terrain type id (kTypeAttribute) for type colours.
+// size) come back in `status` with the tile key in the message. For geomorphing, `parent` (the
+// resident parent's data, built with the same settings) saves reading the parent level from
+// `source`; null = read it. With `types`, the data keeps every sample's terrain type id and every
+// vertex carries it (kTypeAttribute) for type colours.
 TileBuild buildTile(const HeightSource& source, const TileKey& key, const TileBuildSettings& settings,
-                    const Heightfield* parent_samples = nullptr, const TypeSource* types = nullptr);
-
-// The parent level's samples under `child` as geomorphing reads them ((tile_size/2 + 1)^2, of which
-// those at multiples of mesh_step are set), taken from the parent tile's built node instead of the
-// height source: they are its top-surface vertex heights, bit for bit. Empty if the node is not a
-// tile node of these settings. Reads only; safe on a worker while the node is in the scene (STATIC).
-Heightfield parentSamplesFromNode(const osg::Node& parent_node, const TileKey& child, const TileBuildSettings& settings);
+                    const TileData* parent = nullptr, const TypeSource* types = nullptr);
 
 // The detached OSG subgraph for a mesh whose vertices are relative to (origin_x, origin_y).
 // Copies the mesh into VBO-backed arrays; STATIC data variance (edits swap whole tiles).
@@ -80,17 +77,10 @@ osg::ref_ptr<osg::Node> makeTileNode(const TileMesh& mesh, double origin_x, doub
                                      const std::vector<float>* parent_heights = nullptr, double parent_spacing = 0.0,
                                      const std::vector<float>* type_ids = nullptr);
 
-// The vertex array of a tile node built by makeTileNode (grid vertices row-major from the north-west
-// corner, then skirt vertices), or null if `node` is not one.
-const osg::Vec3Array* tileVertices(const osg::Node& node);
-
 // Per vertex of `mesh` (vertices relative to the tile's north-west corner, `spacing` metres between
 // samples, grid step `step`, skirt `skirt_depth_m`), the height of the parent tile's mesh at the same
 // x, y. `parent` holds the parent level's samples under the tile: (tile_size/2 + 1)^2.
 std::vector<float> parentSurfaceHeights(const TileMesh& mesh, const Heightfield& parent, double spacing, int step,
                                         float skirt_depth_m);
-
-// 64-bit FNV-1a over the float bits of the field (and its size).
-uint64_t hashHeights(const Heightfield& field);
 
 }  // namespace terrasynth::plugin

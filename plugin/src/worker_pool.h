@@ -1,4 +1,4 @@
-// terrasynth_plugin/worker_pool.h: the std::thread pool that builds tiles off the draw thread.
+// worker_pool.h: the std::thread pool that builds tiles off the draw thread.
 //
 // Work is re-planned every frame: the tile manager hands over the complete list of tiles it still
 // wants, best first, and the pool replaces its queue with it. Tasks nobody wants any more are

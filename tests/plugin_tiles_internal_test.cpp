@@ -1,5 +1,6 @@
-// Tile data model on a real DEM: windows are bit-identical to larger windows, neighbouring tiles
-// share their edge vertices exactly, skirts hang below the edges.
+// Tiles on a real DEM: windows are bit-identical to larger windows, a tile's data is the window it
+// read, neighbouring tiles share their edge vertices exactly, skirts hang below the edges, geomorph
+// targets lie on the parent's mesh and come from the parent's data.
 #include <gtest/gtest.h>
 
 #include <osg/Geometry>
@@ -10,8 +11,8 @@
 #include <map>
 
 #include "terrasynth_plugin/height_source.h"
-#include "terrasynth_plugin/tile_builder.h"
 #include "test_support.h"
+#include "tile_builder.h"
 
 namespace terrasynth::plugin {
 namespace {
@@ -72,9 +73,21 @@ TEST(PluginTiles, TileHeightsAreAWindowOfTheWholeGrid) {
     const PixelWindow w = tileReadWindow(key, s);
     auto larger = source({w.x - 10, w.y - 5, w.width + 30, w.height + 20}, key.level);
     ASSERT_TRUE(larger);
-    EXPECT_EQ(tile.heights_hash, hashHeights(subWindow(*larger, 10, 5, w.width, w.height)));
-    EXPECT_LT(tile.min_height, tile.max_height);
+    const TileData& data = *tile.data;
+    EXPECT_EQ(data.hash, hashHeights(subWindow(*larger, 10, 5, w.width, w.height)));
+    EXPECT_LT(data.min_height, data.max_height);
     EXPECT_GT(tile.bytes, size_t{65 * 65 * 24});
+    // The data is the window as read (apron included), placed like the layout's tile.
+    EXPECT_TRUE(data.key == key);
+    EXPECT_TRUE(sameBits(data.heights, subWindow(*larger, 10, 5, w.width, w.height)));
+    EXPECT_EQ(data.apron, 1);
+    EXPECT_EQ(data.tileSize(), 64);
+    EXPECT_EQ(data.sample(0, 0), larger->at(11, 6));
+    EXPECT_DOUBLE_EQ(data.west_x, s.layout.westX(key));
+    EXPECT_DOUBLE_EQ(data.north_y, s.layout.northY(key));
+    EXPECT_DOUBLE_EQ(data.spacing_m, s.layout.spacing(key.level));
+    EXPECT_TRUE(data.types.empty());
+    EXPECT_EQ(data.bytes(), size_t(67 * 67) * sizeof(float));
 }
 
 TEST(PluginTiles, NeighbouringTilesShareEdgeVerticesAndHangSkirts) {
@@ -92,7 +105,7 @@ TEST(PluginTiles, NeighbouringTilesShareEdgeVerticesAndHangSkirts) {
         auto edgeOf = [&](const TileBuild& t) {
             std::map<long long, double> heights;
             for (const auto& v : worldVertices(t.node.get()))
-                if (std::abs(v.x() - edge_x) < 1e-3 && v.z() >= t.min_height - 1e-3) {
+                if (std::abs(v.x() - edge_x) < 1e-3 && v.z() >= t.data->min_height - 1e-3) {
                     const long long y = std::llround(v.y() * 1000.0);
                     auto it = heights.find(y);
                     if (it == heights.end() || v.z() > it->second) heights[y] = v.z();  // skip skirt
@@ -110,10 +123,11 @@ TEST(PluginTiles, NeighbouringTilesShareEdgeVerticesAndHangSkirts) {
         // every sample of the tile; the bound covers it.
         double lowest = 1e30;
         for (const auto& v : worldVertices(a.node.get())) lowest = std::min(lowest, v.z());
-        const double depth = (a.max_height - a.min_height) + 2.0 * s.layout.spacing(2);
-        EXPECT_LE(lowest, a.min_height - 2.0 * s.layout.spacing(2) + 1e-2);
+        const TileData& da = *a.data;
+        const double depth = (da.max_height - da.min_height) + 2.0 * s.layout.spacing(2);
+        EXPECT_LE(lowest, da.min_height - 2.0 * s.layout.spacing(2) + 1e-2);
         EXPECT_GE(lowest, a.box.zMin() - 1e-2);
-        EXPECT_NEAR(a.box.zMin(), a.min_height - depth, 0.01);
+        EXPECT_NEAR(a.box.zMin(), da.min_height - depth, 0.01);
     }
 }
 
@@ -130,7 +144,7 @@ TEST(PluginTiles, GeomorphTargetsLieOnTheParentMesh) {
     // Parent top-surface heights by world position.
     std::map<std::pair<long long, long long>, double> parent_z;
     for (const auto& v : worldVertices(parent.node.get()))
-        if (v.z() >= parent.min_height - 1e-3) parent_z[{std::llround(v.x() * 100), std::llround(v.y() * 100)}] = v.z();
+        if (v.z() >= parent.data->min_height - 1e-3) parent_z[{std::llround(v.x() * 100), std::llround(v.y() * 100)}] = v.z();
     size_t on_parent_vertices = 0;
     for (int c = 0; c < 4; ++c) {
         const TileBuild child = buildTile(source, parent_key.child(c % 2, c / 2), s);
@@ -143,7 +157,7 @@ TEST(PluginTiles, GeomorphTargetsLieOnTheParentMesh) {
         ASSERT_EQ(coarse->size(), world.size());
         for (size_t i = 0; i < world.size(); ++i) {
             auto it = parent_z.find({std::llround(world[i].x() * 100), std::llround(world[i].y() * 100)});
-            if (it == parent_z.end() || world[i].z() < child.min_height - 1e-3) continue;
+            if (it == parent_z.end() || world[i].z() < child.data->min_height - 1e-3) continue;
             // Where a parent vertex is, the morph target is exactly the parent's height.
             EXPECT_FLOAT_EQ((*coarse)[i], static_cast<float>(it->second));
             ++on_parent_vertices;
@@ -151,32 +165,95 @@ TEST(PluginTiles, GeomorphTargetsLieOnTheParentMesh) {
     }
     EXPECT_EQ(on_parent_vertices, size_t(4 * 17 * 17));  // every other vertex of each child
 
-    // The manager takes the parent samples from the resident parent's vertices instead of a second
-    // synthesis call: they must be the source's samples bit for bit, and give the same tile.
+    // The manager takes the parent samples from the resident parent's data instead of a second
+    // synthesis call: they must be the source's samples bit for bit, and give the same tile. They
+    // are also the parent's top-surface vertex heights (where its mesh has vertices): the render
+    // model agrees with the data model, in vertex order or reordered for the vertex cache.
     for (int step : {1, 2}) {
-        s.mesh_step = step;
-        const TileBuild p = buildTile(source, parent_key, s);
-        const TileKey child = parent_key.child(1, 0);
-        const Heightfield from_node = parentSamplesFromNode(*p.node, child, s);
-        ASSERT_EQ(from_node.width, 17);
-        auto from_source = source({child.x * 16, child.y * 16, 17, 17}, child.level + 1);
-        ASSERT_TRUE(from_source);
-        for (int y = 0; y < 17; y += step)
-            for (int x = 0; x < 17; x += step) ASSERT_EQ(from_node.at(x, y), from_source->at(x, y));
-        const TileBuild a = buildTile(source, child, s), b = buildTile(source, child, s, &from_node);
-        ASSERT_TRUE(a.status && b.status);
-        auto coarseOf = [](const TileBuild& t) {
-            auto* g = dynamic_cast<osg::MatrixTransform*>(t.node.get())->getChild(0)->asGeometry();
-            const auto* c = static_cast<const osg::FloatArray*>(g->getVertexAttribArray(kCoarseHeightAttribute));
-            return std::vector<float>(c->begin(), c->end());
-        };
-        EXPECT_EQ(coarseOf(a), coarseOf(b));
+        for (bool optimize : {false, true}) {
+            s.mesh_step = step;
+            s.optimize_order = optimize;
+            const TileBuild p = buildTile(source, parent_key, s);
+            ASSERT_TRUE(p.status);
+            for (int c = 0; c < 4; ++c) {
+                const TileKey child = parent_key.child(c % 2, c / 2);
+                const Heightfield from_data = parentSamples(*p.data, child);
+                ASSERT_EQ(from_data.width, 17);
+                ASSERT_EQ(from_data.height, 17);
+                auto from_source = source({child.x * 16, child.y * 16, 17, 17}, child.level + 1);
+                ASSERT_TRUE(from_source);
+                EXPECT_TRUE(sameBits(from_data, *from_source)) << "child " << c;
+                const TileBuild a = buildTile(source, child, s), b = buildTile(source, child, s, p.data.get());
+                ASSERT_TRUE(a.status && b.status);
+                auto coarseOf = [](const TileBuild& t) {
+                    auto* g = dynamic_cast<osg::MatrixTransform*>(t.node.get())->getChild(0)->asGeometry();
+                    const auto* f = static_cast<const osg::FloatArray*>(g->getVertexAttribArray(kCoarseHeightAttribute));
+                    return std::vector<float>(f->begin(), f->end());
+                };
+                EXPECT_EQ(coarseOf(a), coarseOf(b));
+            }
+            // Every top-surface vertex of the parent sits on a sample of its data, at that sample's height.
+            const double spacing = s.layout.spacing(parent_key.level);
+            size_t top = 0;
+            for (const auto& v : worldVertices(p.node.get())) {
+                const long long col = std::llround((v.x() - p.data->west_x) / spacing);
+                const long long row = std::llround((p.data->north_y - v.y()) / spacing);
+                ASSERT_TRUE(col >= 0 && row >= 0 && col <= 32 && row <= 32);
+                EXPECT_NEAR(v.x(), p.data->west_x + col * spacing, 1e-3 * spacing);
+                const float h = p.data->sample(static_cast<int>(col), static_cast<int>(row));
+                if (static_cast<float>(v.z()) < h) continue;  // a skirt vertex hangs below its sample
+                EXPECT_EQ(static_cast<float>(v.z()), h);
+                ++top;
+            }
+            EXPECT_EQ(top, size_t(32 / step + 1) * size_t(32 / step + 1));
+        }
     }
     // Roots (level == max_level) have nothing to morph to.
     const TileBuild root = buildTile(source, {4, 0, 0}, s);
     ASSERT_TRUE(root.status);
     auto* geom = dynamic_cast<osg::MatrixTransform*>(root.node.get())->getChild(0)->asGeometry();
     EXPECT_EQ(geom->getVertexAttribArray(kCoarseHeightAttribute), nullptr);
+}
+
+TEST(PluginTiles, DataKeepsTheTypesAndSameSamplesTellsRebuildsApart) {
+    const Heightfield dem = test::loadExemplarField("orom_rockies");
+    HeightSource source = mirroredExemplarSource(dem);
+    TileBuildSettings s;
+    s.layout = {32, dem.meters_per_pixel_x};
+    const TileKey key{1, 2, 3};
+    // Three types in diagonal stripes of the global grid.
+    auto stripe = [](int64_t x, int64_t y) { return static_cast<uint8_t>((x + y) % 3); };
+    TypeSource types = [stripe](const PixelWindow& w, int) -> Result<std::vector<uint8_t>> {
+        std::vector<uint8_t> ids(static_cast<size_t>(w.width) * w.height);
+        for (int y = 0; y < w.height; ++y)
+            for (int x = 0; x < w.width; ++x) ids[static_cast<size_t>(y) * w.width + x] = stripe(w.x + x, w.y + y);
+        return ids;
+    };
+    const TileBuild plain = buildTile(source, key, s), typed = buildTile(source, key, s, nullptr, &types),
+                    again = buildTile(source, key, s, nullptr, &types);
+    ASSERT_TRUE(plain.status && typed.status && again.status);
+    const TileData& data = *typed.data;
+    ASSERT_EQ(data.types.size(), size_t(33 * 33));
+    EXPECT_EQ(data.bytes(), size_t(35 * 35) * sizeof(float) + 33 * 33);
+    auto* geometry = dynamic_cast<osg::MatrixTransform*>(typed.node.get())->getChild(0)->asGeometry();
+    const auto* vertex_types = dynamic_cast<const osg::FloatArray*>(geometry->getVertexAttribArray(kTypeAttribute));
+    ASSERT_NE(vertex_types, nullptr);
+    for (int row = 0; row <= 32; row += 8)
+        for (int col = 0; col <= 32; col += 4) {
+            const uint8_t expected = stripe(key.x * 32 + col, key.y * 32 + row);
+            EXPECT_EQ(data.types[static_cast<size_t>(row) * 33 + col], expected);
+            EXPECT_EQ((*vertex_types)[static_cast<size_t>(row) * 33 + col], float(expected));  // grid order
+        }
+    EXPECT_TRUE(sameBits(plain.data->heights, data.heights));
+    EXPECT_FALSE(sameSamples(*plain.data, data)) << "same heights, other types";
+    EXPECT_TRUE(sameSamples(data, *again.data));
+    // A change in one apron sample alone (north of the corner: it shapes the corner's normal) makes
+    // another tile.
+    HeightSource bumped = editedSource(source, [](const PixelWindow&, int, Heightfield& f) { f.at(1, 0) += 0.5f; });
+    const TileBuild edited = buildTile(bumped, key, s);
+    ASSERT_TRUE(edited.status);
+    EXPECT_FALSE(sameSamples(*plain.data, *edited.data));
+    EXPECT_EQ(plain.data->min_height, edited.data->min_height);
 }
 
 TEST(PluginTiles, SourceErrorsNameTheTile) {

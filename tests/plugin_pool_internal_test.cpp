@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include "terrasynth_plugin/worker_pool.h"
+#include "worker_pool.h"
 
 namespace terrasynth::plugin {
 namespace {
