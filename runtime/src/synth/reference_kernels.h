@@ -5,10 +5,11 @@
 
 #include <vector>
 
+#include "constraints/constraint_fields.h"
 #include "synth/coherence_fields.h"
-#include "synth/constraint_fields.h"
 #include "synth/initial_patches.h"
 #include "synth/synthesis_plan.h"
+#include "synth/type_seeds.h"
 #include "terrasynth/database.h"
 
 namespace terrasynth::synth {
@@ -52,7 +53,7 @@ struct CorrectionContext {
     int level = 0;
     float meters_per_pixel0 = 1.0f;
     uint32_t seed_salt = 0;
-    LevelConstraints constraints;
+    constraints::LevelConstraints constraints;
     SeedTable seeds;
     std::vector<uint8_t> coherence;  // W^i codes per region pixel (empty: no previous result)
     PassHistory previous;            // the previous result of the current pass (s5.3)
