@@ -1,4 +1,4 @@
-// Issue 20, cost limits that must not change results: the indexed junction pins, the binary-search
+// Cost limits that must not change results: the indexed junction pins, the binary-search
 // widget snap, the linear crossing de-duplication and the clipped stroke painter each give exactly
 // what the straightforward (quadratic or unclipped) version gave, written out here as the oracle.
 #include <gtest/gtest.h>

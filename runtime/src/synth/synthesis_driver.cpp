@@ -181,7 +181,8 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
             }
         }
         if (!drain) return Status::ok();
-        // Issue 17: breach the level's pits; frozen pixels take the previous synthesis's drained state.
+        // Drainage (drainage_breach.h): breach the level's pits; frozen pixels take the previous
+        // synthesis's drained state.
         const PassHistory drained = previousPass(params.previous.get(), level, passes, region);
         Status s = steps.drain(level, region, breachRadius(level),
                                {&coherence, &drained, &level_constraints.blend, steps.depthMargin(level),
