@@ -1,5 +1,5 @@
 // Curve heights that hold although the finest levels are free (s5.1 + windowed determinism): the
-// curve equivalent of point_lift.cpp.
+// curve equivalent of lift_points.cpp.
 //
 // The paper disables geometric constraints on the finest two levels; their detail then moves the
 // finished course away from the widgets' heights (measured: a median 3-4% of the relief). A lift
