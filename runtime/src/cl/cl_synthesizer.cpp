@@ -12,6 +12,7 @@
 #include "synth/initial_patches.h"
 #include "synth/reference_kernels.h"
 #include "synth/synthesis_driver.h"
+#include "synth/type_seeds.h"
 
 namespace terrasynth {
 namespace {
@@ -236,7 +237,7 @@ private:
         return patchLevel(level, child, seed, layout_buffer.value().get(), layout.entering, true);
     }
 
-    Status beginLevel(int level, const synth::LevelRegion& region, const synth::LevelConstraints& constraints,
+    Status beginLevel(int level, const synth::LevelRegion& region, const constraints::LevelConstraints& constraints,
                       const std::vector<uint8_t>& coherence, uint32_t seed) override {
         auto codes = upload(coherence.data(), coherence.size());
         if (!codes) return codes.status();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/number_text.h"
 #include "terrasynth/limits.h"
 
 namespace terrasynth::detail {
@@ -54,16 +55,6 @@ Result<json> parseJson(const std::string& text, const std::string& where) {
 
 std::string dumpJson(const json& value, int indent) {
     return value.dump(indent, ' ', /*ensure_ascii=*/false, json::error_handler_t::replace);
-}
-
-std::string compactNumber(double v) {
-    std::string s = std::to_string(v);
-    while (s.find('.') != std::string::npos && (s.back() == '0' || s.back() == '.')) {
-        const bool dot = s.back() == '.';
-        s.pop_back();
-        if (dot) break;
-    }
-    return s;
 }
 
 JsonReader::JsonReader(const json& object, std::string where) : object_(object), where_(std::move(where)) {

@@ -63,9 +63,6 @@ private:
     std::string error_;
 };
 
-// Decimal text of v without trailing zeros ("0.25", "12", "1000000").
-std::string compactNumber(double v);
-
 // The one JSON parser of the runtime: refuses texts over limits::kMaxJsonBytes or nested deeper
 // than limits::kMaxJsonDepth before parsing (so neither the parser nor any later copy of the tree
 // can exhaust the stack), then parses. Errors start with `where` (a file or field name):

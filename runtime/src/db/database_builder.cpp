@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "core/hash.h"
-#include "core/json_reader.h"
+#include "core/number_text.h"
 #include "db/db_internal.h"
 #include "terrasynth/limits.h"
 #include "terrasynth/terrain_stats.h"

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "project/edit_session_impl.h"
+#include "constraints/type_paint.h"
 #include "core/paths.h"
+#include "project/edit_session_impl.h"
 #include "project/extent_build.h"
-#include "synth/constraints_json.h"
 
 namespace terrasynth {
 
@@ -227,8 +227,8 @@ void adoptConstraints(EditSession::Impl& s, const SynthesisConstraints* c) {
     for (size_t i = 0; i < c->points.size(); ++i) s.lists.point_ids.push_back(s.newId());
     for (size_t i = 0; i < c->curves.size(); ++i) s.lists.curve_ids.push_back(s.newId());
     for (size_t i = 0; i < c->pastes.size(); ++i) s.lists.paste_ids.push_back(s.newId());
-    if (!c->types.empty()) s.types.types = synth::paintOnWindow(c->types, s.extent, TypePaint::kUnpainted);
-    if (!c->freeze.empty()) s.freeze_brush.types = synth::paintOnWindow(c->freeze, s.extent, 0);
+    if (!c->types.empty()) s.types.types = constraints::paintOnWindow(c->types, s.extent, TypePaint::kUnpainted);
+    if (!c->freeze.empty()) s.freeze_brush.types = constraints::paintOnWindow(c->freeze, s.extent, 0);
 }
 
 }  // namespace

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/json_reader.h"
+#include "constraints/type_paint.h"
+#include "core/number_text.h"
 #include "project/edit_session_impl.h"
 #include "project/extent_build.h"
-#include "synth/constraints_json.h"
 
 namespace terrasynth {
 namespace {
@@ -340,7 +340,7 @@ Result<PixelWindow> EditSession::setConstraints(const SynthesisConstraints& next
         if (Status c = checkPoint(next.points[i], s.extent); !c) return c.withContext("points[" + std::to_string(i) + "]");
     for (size_t i = 0; i < next.curves.size(); ++i)
         if (Status c = checkCurve(next.curves[i], s.extent); !c) return c.withContext("curves[" + std::to_string(i) + "]");
-    std::vector<uint8_t> next_freeze = synth::paintOnWindow(next.freeze, s.extent, 0);
+    std::vector<uint8_t> next_freeze = constraints::paintOnWindow(next.freeze, s.extent, 0);
     for (uint8_t& v : next_freeze) v = v != 0 && v != TypePaint::kUnpainted ? 1 : 0;
     bool same_pastes = next.pastes.size() == s.lists.pastes.size();
     for (size_t i = 0; i < next.pastes.size() && same_pastes; ++i) {
@@ -350,7 +350,7 @@ Result<PixelWindow> EditSession::setConstraints(const SynthesisConstraints& next
     }
     if (!same_pastes) return Status::error("constraints.pastes: differ; use addPaste() and removePaste()");
     std::vector<uint8_t> next_types = next.types.empty() ? std::vector<uint8_t>(s.types.types.size(), TypePaint::kUnpainted)
-                                                         : synth::paintOnWindow(next.types, s.extent, TypePaint::kUnpainted);
+                                                         : constraints::paintOnWindow(next.types, s.extent, TypePaint::kUnpainted);
     for (uint8_t t : next_types)
         if (t != TypePaint::kUnpainted && t >= s.db->type_names.size())
             return Status::error("constraints.types: type id " + std::to_string(t) + " is not in the database");

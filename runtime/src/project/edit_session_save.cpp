@@ -3,10 +3,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/paths.h"
+#include "project/constraints_json.h"
 #include "project/edit_session_impl.h"
 #include "project/edit_sidecar.h"
 #include "project/extent_build.h"
-#include "synth/constraints_json.h"
 #include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield_io.h"
 
@@ -20,7 +20,7 @@ namespace {
 
 // The canonical form of written constraints, as a project reading them back would give them.
 Result<ConstraintsJson> canonical(const ConstraintsJson& written, const ExemplarDatabase& db, const PixelWindow& e) {
-    auto parsed = synth::parseConstraintsJson(nlohmann::json::parse(written.json), synth::masksFrom(written), db, e.x, e.y,
+    auto parsed = project::parseConstraintsJson(nlohmann::json::parse(written.json), project::masksFrom(written), db, e.x, e.y,
                                               e.width, e.height);
     if (!parsed) return parsed.status();
     return constraintsToJson(*parsed, db, e.x, e.y, e.width, e.height, "canonical");
@@ -108,8 +108,8 @@ Result<bool> EditSession::Impl::adoptSidecar() {
     auto sidecar = project::decodeEditSidecar(*bytes, path, /*with_history=*/true);
     if (!sidecar) return reject("are unusable (" + sidecar.message() + ")");
     if (sidecar->extent != extent) return reject("cover another extent");
-    auto reference = synth::parseConstraintsJson(nlohmann::json::parse(sidecar->reference.json),
-                                                 synth::masksFrom(sidecar->reference), *db, extent.x, extent.y,
+    auto reference = project::parseConstraintsJson(nlohmann::json::parse(sidecar->reference.json),
+                                                 project::masksFrom(sidecar->reference), *db, extent.x, extent.y,
                                                  extent.width, extent.height);
     if (!reference) return reject("hold an unreadable reference (" + reference.message() + ")");
     EditLists lifted = lists;

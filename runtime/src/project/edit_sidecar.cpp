@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 
 #include "layers/layer_json.h"
-#include "synth/constraints_json.h"
 #include "terrasynth/layers.h"
 
 namespace terrasynth::project {

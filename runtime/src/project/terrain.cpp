@@ -8,10 +8,10 @@
 #include <cmath>
 #include <mutex>
 
+#include "project/constraints_json.h"
 #include "project/edit_sidecar.h"
 #include "project/extent_build.h"
 #include "project/world_view.h"
-#include "synth/constraints_json.h"
 #include "terrasynth/layers.h"
 
 namespace terrasynth {
@@ -99,7 +99,7 @@ Status Terrain::Impl::adoptSidecar(Synthesizer& synthesizer) {
     if (!sidecar) return reject("are unusable (" + sidecar.message() + ")");
     const PixelWindow extent{project.origin_x, project.origin_y, project.width, project.height};
     if (sidecar->extent != extent) return reject("cover another extent");
-    auto reference = synth::parseConstraintsJson(nlohmann::json::parse(sidecar->reference.json), synth::masksFrom(sidecar->reference),
+    auto reference = project::parseConstraintsJson(nlohmann::json::parse(sidecar->reference.json), project::masksFrom(sidecar->reference),
                                                  db, extent.x, extent.y, extent.width, extent.height);
     if (!reference) return reject("hold an unreadable reference (" + reference.message() + ")");
     // The project's points and curves as the session left them (their lifts), and the reference it

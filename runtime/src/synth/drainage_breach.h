@@ -1,4 +1,4 @@
-// Private: drainage by bounded least-cost breaching (issue 17; Lindsay 2016), one synthesis level at
+// Private: drainage by bounded least-cost breaching (Lindsay 2016), one synthesis level at
 // a time, after its correction passes (terrasynth/synthesizer.h, Drainage::Breach).
 //
 // Pixel-based synthesis leaves closed depressions that real fluvial terrain does not have: patches

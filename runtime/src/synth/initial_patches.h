@@ -1,4 +1,4 @@
-// Private: where synthesis starts (issue 16). The coarsest synthesized level is the coarsest one at
+// Private: where synthesis starts. The coarsest synthesized level is the coarsest one at
 // which most of the database is still large enough to synthesize from, and it starts from
 // irregular patches of exemplar coordinates rather than from independent random coordinates.
 //

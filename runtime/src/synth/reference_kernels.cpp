@@ -157,7 +157,7 @@ void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& chil
             c.x = static_cast<float>(cr.x) + cx;
             c.y = static_cast<float>(cr.y) + cy;
             c.v = p.v;  // eq. 2
-            c.ceiling = p.ceiling;  // the drainage ceiling (issue 17)
+            c.ceiling = p.ceiling;  // the drainage ceiling (drainage_breach.h)
         }
 }
 
@@ -239,7 +239,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
     const float* scale = db.appearance_scale;
     const float inv_scale0 = 1.0f / scale[0];
     const float weight[4] = {scale[0] * scale[0], scale[1] * scale[1], scale[2] * scale[2], scale[3] * scale[3]};
-    const LevelConstraints& constraints = context.constraints;
+    const constraints::LevelConstraints& constraints = context.constraints;
     const int first_x = inset + ((parity_x - region.x - inset) & 1), first_y = inset + ((parity_y - region.y - inset) & 1);
     for (int ly = first_y; ly < region.height - inset; ly += 2) {
         for (int lx = first_x; lx < region.width - inset; lx += 2) {
@@ -346,7 +346,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 const float candidate_height = db.height_m[static_cast<size_t>(best_q)] + v;
                 v = v + phiD(sums[1] / sums[0] - candidate_height, sums[2] / sums[0], kPointToleranceSlope, kPointBlendSlope);
             }
-            // Drainage (issue 17): carved channels stay at or below their carved height; constraints
+            // Drainage (drainage_breach.h): carved channels stay at or below their carved height; constraints
             // win over channels.
             if (ceiling < INFINITY && !constrained) v = std::fmin(v, ceiling - db.height_m[static_cast<size_t>(best_q)]);
             PixelState& out = state[static_cast<size_t>(ly) * region.width + lx];

@@ -1,14 +1,15 @@
 // Private: the plain C++ reference of every synthesis kernel (kernels/synthesis.cl), step for step
 // and with the same float arithmetic, so the OpenCL path can be checked against it
-// (tests/synth_differential_test.cpp) and so the algorithm can be read without OpenCL.
+// (SynthesisDifferential in tests/cl_synthesis_test.cpp) and so the algorithm can be read without OpenCL.
 #pragma once
 
 #include <vector>
 
+#include "constraints/constraint_fields.h"
 #include "synth/coherence_fields.h"
-#include "synth/constraint_fields.h"
 #include "synth/initial_patches.h"
 #include "synth/synthesis_plan.h"
+#include "synth/type_seeds.h"
 #include "terrasynth/database.h"
 
 namespace terrasynth::synth {
@@ -26,7 +27,7 @@ constexpr uint32_t kNoIdentityCandidate = 0xffffffffu;
 uint32_t identityCandidate(const DatabaseLevel& db, uint32_t c);
 
 // Per synthesis pixel: exemplar atlas coordinate S (x, y), height offset V, and the drainage ceiling
-// (issue 17, synth/drainage_breach.h): the height a channel carved at the coarser level must not
+// (synth/drainage_breach.h): the height a channel carved at the coarser level must not
 // rise above; +infinity where there is none.
 struct PixelState {
     float x = 0, y = 0, v = 0, ceiling = 0;
@@ -52,7 +53,7 @@ struct CorrectionContext {
     int level = 0;
     float meters_per_pixel0 = 1.0f;
     uint32_t seed_salt = 0;
-    LevelConstraints constraints;
+    constraints::LevelConstraints constraints;
     SeedTable seeds;
     std::vector<uint8_t> coherence;  // W^i codes per region pixel (empty: no previous result)
     PassHistory previous;            // the previous result of the current pass (s5.3)

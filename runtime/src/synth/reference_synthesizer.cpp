@@ -34,7 +34,7 @@ public:
                              child, seed, level, true, current_);
         return Status::ok();
     }
-    Status beginLevel(int level, const LevelRegion&, const LevelConstraints& constraints,
+    Status beginLevel(int level, const LevelRegion&, const constraints::LevelConstraints& constraints,
                       const std::vector<uint8_t>& coherence, uint32_t seed) override {
         context_.coherence = coherence;
         context_.level = level;

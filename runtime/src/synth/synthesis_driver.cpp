@@ -1,6 +1,6 @@
 #include "synth/synthesis_driver.h"
 
-#include "synth/curve_field.h"
+#include "constraints/curve_field.h"
 #include "terrasynth/limits.h"
 
 #include <algorithm>
@@ -58,7 +58,7 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
                                      ": site within +-2^29 pixels, radius in (0, 1e6], height and lifts finite, slope angle "
                                      "0..80 degrees");
         }
-        if (Status s = checkCurveLimits(c.curves, "constraints.curves"); !s) return s;
+        if (Status s = constraints::checkCurveLimits(c.curves, "constraints.curves"); !s) return s;
         for (size_t i = 0; i < c.curves.size(); ++i)
             for (float lift : c.curves[i].lift_m)
                 if (!std::isfinite(lift)) return Status::error("curve constraint " + std::to_string(i) + ": lift must be finite");
@@ -161,10 +161,10 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
             for (size_t pass = 1; pass < recorded.size(); ++pass) recorded[pass] = recorded[0];
             return s;
         }
-        const LevelConstraints constraints =
-            constraintsForLevel(params.constraints.get(), level, params.first_constrained_level, params.hold_on_free_levels,
-                                region, db.meters_per_pixel);
-        Status begun = steps.beginLevel(level, region, constraints, coherence, params.seed);
+        const constraints::LevelConstraints level_constraints =
+            constraints::constraintsForLevel(params.constraints.get(), level, params.first_constrained_level,
+                                             params.hold_on_free_levels, region, db.meters_per_pixel);
+        Status begun = steps.beginLevel(level, region, level_constraints, coherence, params.seed);
         if (!begun) return begun;
         int subpass = 0;
         for (int pass = 0; pass < passes; ++pass) {
@@ -181,10 +181,11 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
             }
         }
         if (!drain) return Status::ok();
-        // Issue 17: breach the level's pits; frozen pixels take the previous synthesis's drained state.
+        // Drainage (drainage_breach.h): breach the level's pits; frozen pixels take the previous
+        // synthesis's drained state.
         const PassHistory drained = previousPass(params.previous.get(), level, passes, region);
         Status s = steps.drain(level, region, breachRadius(level),
-                               {&coherence, &drained, &constraints.blend, steps.depthMargin(level),
+                               {&coherence, &drained, &level_constraints.blend, steps.depthMargin(level),
                                 level >= kBreachToEdgeFromLevel, plan.needed[level], &steps.basinExemplars()});
         if (!s) return s;
         return history ? steps.recordPass(level, region, history->levels[level].passes.back()) : Status::ok();

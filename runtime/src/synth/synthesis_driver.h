@@ -2,8 +2,8 @@
 // backends, which only differ in how they execute each step.
 #pragma once
 
+#include "constraints/constraint_fields.h"
 #include "synth/coherence_fields.h"
-#include "synth/constraint_fields.h"
 #include "synth/drainage_breach.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/synthesizer.h"
@@ -31,7 +31,7 @@ public:
                             uint32_t seed) = 0;
     // Called once per level before its correction subpasses. `coherence` holds the W^i codes per
     // region pixel, empty when there is no previous synthesis to be coherent with.
-    virtual Status beginLevel(int level, const LevelRegion& region, const LevelConstraints& constraints,
+    virtual Status beginLevel(int level, const LevelRegion& region, const constraints::LevelConstraints& constraints,
                               const std::vector<uint8_t>& coherence, uint32_t seed) = 0;
     // Called before the 4 subpasses of each pass with the previous result of that pass (s5.3).
     virtual Status beginPass(int level, const LevelRegion& region, const PassHistory& previous) = 0;

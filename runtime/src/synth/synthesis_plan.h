@@ -10,16 +10,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/level_region.h"
 #include "terrasynth/limits.h"
 #include "terrasynth/synthesizer.h"
 
 namespace terrasynth::synth {
 
-struct LevelRegion {
-    int x = 0, y = 0;          // global pixel of the region's north-west corner at this level
-    int width = 0, height = 0;
-    size_t pixels() const { return static_cast<size_t>(width) * height; }
-};
+using core::LevelRegion;  // what a plan is made of (core/level_region.h)
 
 struct SynthesisPlan {
     int output_level = 0;

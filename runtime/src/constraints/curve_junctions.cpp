@@ -1,5 +1,5 @@
 // Junction widgets at curve crossings (Gain et al. 2015 s3, Figure 2c).
-#include "synth/curve_junctions.h"
+#include "constraints/curve_junctions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <tuple>
 #include <unordered_map>
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 namespace {
 
 constexpr double kCellPx = 16.0;
@@ -134,4 +134,4 @@ void pinJunctions(const std::vector<CourseCrossing>& crossings, std::vector<Curv
         if (!pins[k].empty()) profiles[k].setPins(std::move(pins[k]));
 }
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -1,6 +1,6 @@
 // Course sampling for curve constraints (Gain et al. 2015 s3: "an initial course is laid out by
 // sketching"; s5.1: closest-point queries on it).
-#include "synth/curve_geometry.h"
+#include "constraints/curve_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "terrasynth/limits.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 namespace {
 
 struct Point {
@@ -133,4 +133,4 @@ std::shared_ptr<const CourseSamples> cachedCourse(const CurveConstraint& curve) 
     return samples;
 }
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -6,11 +6,11 @@
 #include <cstddef>
 #include <vector>
 
-#include "synth/curve_geometry.h"
-#include "synth/curve_profile.h"
+#include "constraints/curve_geometry.h"
+#include "constraints/curve_profile.h"
 #include "terrasynth/limits.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 
 // A crossing of course a at arc length s_a with course b at s_b (a == b for a self-intersection).
 struct CourseCrossing {
@@ -39,4 +39,4 @@ constexpr double kJunctionWidgetSnapPx = 2.0;
 // correction blends in over the larger of the two curves' reaches at the crossing (at least 4 px).
 void pinJunctions(const std::vector<CourseCrossing>& crossings, std::vector<CurveProfile>& profiles);
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -1,15 +1,15 @@
 // The "constraints" section of a .tsyn project (docs/project-format.md): point and curve constraints,
 // type painting and the freeze brush (as mask PNGs and/or brush strokes), pastes; in project pixels.
 // constraintsToJson is the inverse of parseConstraints: painting comes back as masks.
+#include "project/constraints_json.h"
+
 #include <algorithm>
 #include <cmath>
-#include <functional>
 
-#include "synth/constraints_json.h"
-
+#include "constraints/curve_field.h"
+#include "constraints/type_paint.h"
 #include "core/json_reader.h"
 #include "core/paths.h"
-#include "synth/curve_field.h"
 #include "terrasynth/constraints.h"
 #include "terrasynth/database.h"
 #include "terrasynth/heightfield_io.h"
@@ -62,7 +62,6 @@ Status parsePoints(const json& points, SynthesisConstraints& out, int64_t ox, in
     return Status::ok();
 }
 
-// A list of [x, y] points (at least `minimum`), offset by (ox, oy). The error names `path`.
 // A list of `minimum`..`maximum` points [x, y] within +-2^28, offset by (ox, oy). The error names
 // `path` (and the point).
 Result<std::vector<std::pair<double, double>>> readPoints(const json& list, const std::string& path, size_t minimum,
@@ -134,11 +133,11 @@ Status parseCurves(const json& curves, SynthesisConstraints& out, int64_t ox, in
         out.curves.push_back(std::move(curve));
     }
     // Together the courses are bounded in length and in crossings (cost limits, limits.h).
-    return synth::checkCurveLimits(out.curves, "constraints.curves");
+    return constraints::checkCurveLimits(out.curves, "constraints.curves");
 }
 
 // An 8-bit gray mask of the project's size, `field` naming it in errors.
-Result<Image8> readExtentMask(const json& name, const std::string& field, const synth::MaskReader& masks, int w, int h) {
+Result<Image8> readExtentMask(const json& name, const std::string& field, const project::MaskReader& masks, int w, int h) {
     if (!name.is_string()) return Status::error(field + ": must be a PNG path");
     auto image = masks(name.get<std::string>());
     if (!image) return image.status().withContext(field);
@@ -148,7 +147,7 @@ Result<Image8> readExtentMask(const json& name, const std::string& field, const 
     return image;
 }
 
-Status parseTypes(const json& types, const synth::MaskReader& masks, const ExemplarDatabase& db, SynthesisConstraints& out,
+Status parseTypes(const json& types, const project::MaskReader& masks, const ExemplarDatabase& db, SynthesisConstraints& out,
                   int64_t ox, int64_t oy, int w, int h) {
     JsonReader r(types, "constraints.types");
     if (!r.ok()) return r.status();
@@ -194,7 +193,7 @@ Status parseTypes(const json& types, const synth::MaskReader& masks, const Exemp
 }
 
 // The freeze brush: an 8-bit mask PNG of the project's size (non-zero = frozen) and/or strokes.
-Status parseFreeze(const json& freeze, const synth::MaskReader& masks, SynthesisConstraints& out, int64_t ox, int64_t oy,
+Status parseFreeze(const json& freeze, const project::MaskReader& masks, SynthesisConstraints& out, int64_t ox, int64_t oy,
                    int w, int h) {
     JsonReader r(freeze, "constraints.freeze");
     if (!r.ok()) return r.status();
@@ -261,132 +260,11 @@ json pointsJson(const std::vector<std::pair<double, double>>& points, double ox,
 
 }  // namespace
 
-std::vector<uint8_t> synth::paintOnWindow(const TypePaint& paint, const PixelWindow& window, uint8_t outside) {
-    std::vector<uint8_t> out(static_cast<size_t>(window.width) * window.height, outside);
-    for (int y = 0; y < window.height; ++y)
-        for (int x = 0; x < window.width; ++x) {
-            const int64_t px = window.x + x - paint.x, py = window.y + y - paint.y;
-            if (px >= 0 && py >= 0 && px < paint.width && py < paint.height)
-                out[static_cast<size_t>(y) * window.width + x] = paint.types[static_cast<size_t>(py) * paint.width + px];
-        }
-    return out;
-}
-
-namespace {
-
-// The dabs of a stroke: a round brush stamped along each segment at most max(0.5, r/2) pixels apart.
-// Only the dabs within r of the paint's rectangle are visited (the others paint nothing), found by
-// clipping each segment to the rectangle grown by r, so a stroke far outside it, or crossing it
-// from 1e9 pixels away, costs what its part over the rectangle costs.
-struct StrokeDabs {
-    const TypePaint& paint;
-    const std::vector<std::pair<double, double>>& line;
-    double r;
-
-    // Calls dab(x, y) (global pixels) for every dab that may touch the paint, in painting order;
-    // returns how many there are. With `dab` null only counts, in O(segments).
-    uint64_t visit(const std::function<void(double, double)>* dab) const {
-        const double lo_x = static_cast<double>(paint.x) - r - 2.0, hi_x = static_cast<double>(paint.x) + paint.width + r + 2.0;
-        const double lo_y = static_cast<double>(paint.y) - r - 2.0, hi_y = static_cast<double>(paint.y) + paint.height + r + 2.0;
-        auto near = [&](double x, double y) { return x >= lo_x && x <= hi_x && y >= lo_y && y <= hi_y; };
-        uint64_t count = 0;
-        for (size_t i = 0; i < line.size(); ++i) {
-            const double ax = line[i == 0 ? 0 : i - 1].first, ay = line[i == 0 ? 0 : i - 1].second;
-            if (i == 0) {
-                if (near(ax, ay)) ++count, dab ? (*dab)(ax, ay) : void();
-                continue;
-            }
-            const double dx = line[i].first - ax, dy = line[i].second - ay;
-            const int64_t steps = std::max<int64_t>(1, static_cast<int64_t>(std::ceil(std::hypot(dx, dy) / std::max(0.5, r * 0.5))));
-            // Liang-Barsky: the parameter range of the segment inside the grown rectangle.
-            double t0 = 0.0, t1 = 1.0;
-            auto clip = [&](double p, double q) {  // keep t where p * t <= q
-                if (p == 0.0) return q >= 0.0;
-                const double t = q / p;
-                if (p < 0.0) t0 = std::max(t0, t);
-                else t1 = std::min(t1, t);
-                return t0 <= t1;
-            };
-            if (!(clip(-dx, ax - lo_x) && clip(dx, hi_x - ax) && clip(-dy, ay - lo_y) && clip(dy, hi_y - ay))) continue;
-            const int64_t first = std::max<int64_t>(1, static_cast<int64_t>(std::floor(t0 * steps)) - 1);
-            const int64_t last = std::min<int64_t>(steps, static_cast<int64_t>(std::ceil(t1 * steps)) + 1);
-            if (!dab) {
-                count += static_cast<uint64_t>(std::max<int64_t>(0, last - first + 1));
-                continue;
-            }
-            for (int64_t k = first; k <= last; ++k) {
-                // The same arithmetic as stamping every step from the segment's start.
-                const double x = ax + dx * static_cast<double>(k) / static_cast<double>(steps);
-                const double y = ay + dy * static_cast<double>(k) / static_cast<double>(steps);
-                if (near(x, y)) ++count, (*dab)(x, y);
-            }
-        }
-        return count;
-    }
-};
-
-// Pixels (x, y) of the paint with (x - cx)^2 + (y - cy)^2 <= r^2 on row y: an interval around cx,
-// estimated with a square root and settled with that exact test.
-bool rowSpan(int y, double cx, double cy, double r, int width, int* from, int* to) {
-    auto in = [&](int x) { return (x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r; };
-    const double half = std::sqrt(std::max(0.0, r * r - (y - cy) * (y - cy)));
-    const int x0 = static_cast<int>(std::max(0.0, std::floor(cx - r)));
-    const int x1 = static_cast<int>(std::min(width - 1.0, std::ceil(cx + r)));
-    if (x0 > x1) return false;
-    int a = static_cast<int>(std::clamp(std::ceil(cx - half), double(x0), double(x1)));
-    int b = static_cast<int>(std::clamp(std::floor(cx + half), double(x0), double(x1)));
-    while (a > x0 && in(a - 1)) --a;
-    while (a <= x1 && !in(a)) ++a;
-    while (b < x1 && in(b + 1)) ++b;
-    while (b >= x0 && !in(b)) --b;
-    if (a > b) return false;
-    *from = a, *to = b;
-    return true;
-}
-
-}  // namespace
-
-uint64_t strokePaintCost(const TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius_px) {
-    if (paint.width <= 0 || paint.height <= 0) return 0;
-    const uint64_t dabs = StrokeDabs{paint, line, radius_px}.visit(nullptr);
-    const uint64_t rows = static_cast<uint64_t>(std::min(2.0 * radius_px + 3.0, static_cast<double>(paint.height)));
-    return dabs * rows + static_cast<uint64_t>(paint.width) * paint.height;
-}
-
-void paintStroke(TypePaint& paint, const std::vector<std::pair<double, double>>& line, double radius_px, uint8_t value) {
-    if (paint.width <= 0 || paint.height <= 0 || !(radius_px > 0.0)) return;
-    const double r = radius_px;
-    // Every dab gives one span per row it covers; the stroke paints the union of its dabs with one
-    // value, so the spans of each row are merged and filled once.
-    std::vector<std::vector<std::pair<int, int>>> rows(static_cast<size_t>(paint.height));
-    const std::function<void(double, double)> dab = [&](double gx, double gy) {
-        const double cx = gx - static_cast<double>(paint.x), cy = gy - static_cast<double>(paint.y);
-        const int y0 = static_cast<int>(std::max(0.0, std::floor(cy - r)));
-        const int y1 = static_cast<int>(std::min(paint.height - 1.0, std::ceil(cy + r)));
-        for (int y = y0; y <= y1; ++y) {
-            int from = 0, to = 0;
-            if (rowSpan(y, cx, cy, r, paint.width, &from, &to)) rows[static_cast<size_t>(y)].push_back({from, to});
-        }
-    };
-    StrokeDabs{paint, line, r}.visit(&dab);
-    for (int y = 0; y < paint.height; ++y) {
-        std::vector<std::pair<int, int>>& spans = rows[static_cast<size_t>(y)];
-        if (spans.empty()) continue;
-        std::sort(spans.begin(), spans.end());
-        uint8_t* row = &paint.types[static_cast<size_t>(y) * paint.width];
-        int filled = -1;  // pixels up to here are painted already
-        for (const auto& [from, to] : spans) {
-            for (int x = std::max(from, filled + 1); x <= to; ++x) row[x] = value;
-            filled = std::max(filled, to);
-        }
-    }
-}
-
-synth::MaskReader synth::masksFromFolder(const std::string& base_dir) {
+project::MaskReader project::masksFromFolder(const std::string& base_dir) {
     return [base_dir](const std::string& name) { return readPng8(detail::resolveRelative(base_dir, name)); };
 }
 
-synth::MaskReader synth::masksFrom(const ConstraintsJson& written) {
+project::MaskReader project::masksFrom(const ConstraintsJson& written) {
     return [&written](const std::string& name) -> Result<Image8> {
         for (const ConstraintsJson::Mask& m : written.masks)
             if (detail::baseName(m.file) == name) return Image8{m.width, m.height, 1, m.pixels};
@@ -398,10 +276,10 @@ Result<SynthesisConstraints> parseConstraints(const std::string& text, const std
                                               int64_t ox, int64_t oy, int w, int h) {
     auto parsed = detail::parseJson(text, "constraints");
     if (!parsed) return parsed.status();
-    return synth::parseConstraintsJson(*parsed, synth::masksFromFolder(base_dir), db, ox, oy, w, h);
+    return project::parseConstraintsJson(*parsed, project::masksFromFolder(base_dir), db, ox, oy, w, h);
 }
 
-Result<SynthesisConstraints> synth::parseConstraintsJson(const json& c, const MaskReader& masks, const ExemplarDatabase& db,
+Result<SynthesisConstraints> project::parseConstraintsJson(const json& c, const MaskReader& masks, const ExemplarDatabase& db,
                                                          int64_t ox, int64_t oy, int w, int h) {
     SynthesisConstraints out;
     if (c.is_null()) return out;
@@ -448,7 +326,7 @@ Result<ConstraintsJson> constraintsToJson(const SynthesisConstraints& c, const E
     }
     if (!c.types.empty()) {
         // Mask value = type id + 1 (0 = unpainted), named through the palette.
-        std::vector<uint8_t> pixels = synth::paintOnWindow(c.types, {ox, oy, w, h}, TypePaint::kUnpainted);
+        std::vector<uint8_t> pixels = constraints::paintOnWindow(c.types, {ox, oy, w, h}, TypePaint::kUnpainted);
         json palette = json::object();
         for (uint8_t& v : pixels) {
             if (v == TypePaint::kUnpainted) {
@@ -464,7 +342,7 @@ Result<ConstraintsJson> constraintsToJson(const SynthesisConstraints& c, const E
         j["types"] = {{"mask", detail::baseName(out.masks.back().file)}, {"palette", palette}};
     }
     if (!c.freeze.empty()) {
-        std::vector<uint8_t> pixels = synth::paintOnWindow(c.freeze, {ox, oy, w, h}, 0);
+        std::vector<uint8_t> pixels = constraints::paintOnWindow(c.freeze, {ox, oy, w, h}, 0);
         for (uint8_t& v : pixels) v = v != 0 && v != TypePaint::kUnpainted ? 255 : 0;
         out.masks.push_back({mask_stem + ".freeze.png", w, h, std::move(pixels)});
         j["freeze"] = {{"mask", detail::baseName(out.masks.back().file)}};

@@ -4,13 +4,13 @@
 // The closest-point parameter t(p) jumps across the medial axis on the concave side of the course,
 // so the envelope d(p) < reach(t(p)) has steps there (Figure 5a). We extract the envelope as the
 // f = 0 isocurve, smooth only the contour around those jumps and fill the smoothed loops.
-#include "synth/curve_envelope.h"
+#include "constraints/curve_envelope.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 namespace {
 
 constexpr float kOutside = 1.0f;  // f of the closing ring and of pixels without a distance
@@ -214,4 +214,4 @@ std::vector<uint8_t> envelopeMask(const EnvelopeGrid& grid, const EnvelopeSmooth
     return fillLoops(contour, loops, grid);
 }
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

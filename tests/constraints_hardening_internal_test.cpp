@@ -1,4 +1,4 @@
-// Issue 20, cost limits that must not change results: the indexed junction pins, the binary-search
+// Cost limits that must not change results: the indexed junction pins, the binary-search
 // widget snap, the linear crossing de-duplication and the clipped stroke painter each give exactly
 // what the straightforward (quadratic or unclipped) version gave, written out here as the oracle.
 #include <gtest/gtest.h>
@@ -9,12 +9,12 @@
 #include <tuple>
 #include <vector>
 
-#include "synth/curve_geometry.h"
-#include "synth/curve_junctions.h"
-#include "synth/curve_profile.h"
+#include "constraints/curve_geometry.h"
+#include "constraints/curve_junctions.h"
+#include "constraints/curve_profile.h"
 #include "terrasynth/constraints.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 namespace {
 
 // ---- Oracles: the code before the indexes, verbatim in behaviour ----
@@ -108,7 +108,7 @@ std::vector<std::pair<double, double>> randomCourse(std::mt19937& rng, int n, do
 
 // ---- The indexed versions agree with the oracles, bit for bit ----
 
-TEST(SynthHardening, IndexedJunctionPinsSumLikeEveryPin) {
+TEST(ConstraintHardening, IndexedJunctionPinsSumLikeEveryPin) {
     std::mt19937 rng(20);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<CurveWidget> widgets;
@@ -123,7 +123,7 @@ TEST(SynthHardening, IndexedJunctionPinsSumLikeEveryPin) {
     }
 }
 
-TEST(SynthHardening, WidgetSnapBySearchFindsWhatTheScanFinds) {
+TEST(ConstraintHardening, WidgetSnapBySearchFindsWhatTheScanFinds) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<CurveWidget> widgets;
@@ -143,7 +143,7 @@ TEST(SynthHardening, WidgetSnapBySearchFindsWhatTheScanFinds) {
     }
 }
 
-TEST(SynthHardening, CrossingsDeduplicateLikeTheQuadraticScan) {
+TEST(ConstraintHardening, CrossingsDeduplicateLikeTheQuadraticScan) {
     std::mt19937 rng(11);
     std::vector<CourseSamples> courses;
     for (int k = 0; k < 3; ++k) courses.push_back(sampleCourse(randomCourse(rng, 25, 0.0, 120.0), k != 1));
@@ -161,7 +161,7 @@ TEST(SynthHardening, CrossingsDeduplicateLikeTheQuadraticScan) {
     }
 }
 
-TEST(SynthHardening, AScribbleStopsTheCrossingSearch) {
+TEST(ConstraintHardening, AScribbleStopsTheCrossingSearch) {
     // 4000 points thrown into a 60-pixel square: thousands of segments per grid cell.
     std::mt19937 rng(5);
     const CourseSamples scribble = sampleCourse(randomCourse(rng, 4000, 0.0, 60.0), false);
@@ -169,7 +169,7 @@ TEST(SynthHardening, AScribbleStopsTheCrossingSearch) {
     EXPECT_FALSE(search.complete);
 }
 
-TEST(SynthHardening, ClippedStrokePaintsWhatEveryDabPaints) {
+TEST(ConstraintHardening, ClippedStrokePaintsWhatEveryDabPaints) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (int trial = 0; trial < 60; ++trial) {
@@ -186,7 +186,7 @@ TEST(SynthHardening, ClippedStrokePaintsWhatEveryDabPaints) {
     }
 }
 
-TEST(SynthHardening, StrokesFromFarAwayCostWhatTheirPartOverThePaintCosts) {
+TEST(ConstraintHardening, StrokesFromFarAwayCostWhatTheirPartOverThePaintCosts) {
     TypePaint paint;
     paint.width = paint.height = 128;
     paint.types.assign(128 * 128, TypePaint::kUnpainted);
@@ -203,4 +203,4 @@ TEST(SynthHardening, StrokesFromFarAwayCostWhatTheirPartOverThePaintCosts) {
 }
 
 }  // namespace
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -5,14 +5,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "synth/curve_envelope.h"
-#include "synth/curve_field.h"
-#include "synth/curve_geometry.h"
-#include "synth/curve_junctions.h"
-#include "synth/curve_profile.h"
-#include "synth/curve_raster.h"
+#include "constraints/curve_envelope.h"
+#include "constraints/curve_field.h"
+#include "constraints/curve_geometry.h"
+#include "constraints/curve_junctions.h"
+#include "constraints/curve_profile.h"
+#include "constraints/curve_raster.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 namespace {
 
 constexpr double kMpp = 10.0;  // metres per level-0 pixel
@@ -40,7 +40,7 @@ CurveConstraint straight(double x0, double y0, double x1, double y1, std::vector
 double centre(int p, int level) { return (p + 0.5) * double(1 << level) - 0.5; }
 
 struct Sums {
-    LevelRegion region;
+    core::LevelRegion region;
     std::vector<float> v;
     bool affected(int x, int y) const { return at(x, y)[0] > 0.0f; }
     double target(int x, int y) const { return at(x, y)[1] / at(x, y)[0]; }
@@ -50,25 +50,25 @@ struct Sums {
     }
 };
 
-Sums run(const std::vector<CurveConstraint>& curves, int level, LevelRegion region) {
+Sums run(const std::vector<CurveConstraint>& curves, int level, core::LevelRegion region) {
     Sums s{region, std::vector<float>(3 * region.pixels(), 0.0f)};
     accumulateCurves(curves, level, region, kMpp, s.v);
     return s;
 }
 
 // One curve without junction handling, with or without isocurve smoothing.
-Sums runSingle(const CurveConstraint& curve, int level, LevelRegion region, bool smooth) {
+Sums runSingle(const CurveConstraint& curve, int level, core::LevelRegion region, bool smooth) {
     Sums s{region, std::vector<float>(3 * region.pixels(), 0.0f)};
     const CourseSamples course = sampleCourse(curve.course, curve.spline);
     accumulateCurve(course, CurveProfile(curve.widgets, course.length), level, region, kMpp, smooth, s.v);
     return s;
 }
 
-TEST(SynthCurves, StraightCourseUsesEachSidesGradientWithinItsReach) {
+TEST(ConstraintCurves, StraightCourseUsesEachSidesGradientWithinItsReach) {
     // Course heading east along y = 200: left is north (smaller y).
     const CurveConstraint curve = straight(100, 200, 400, 200, {widget(0.5, 1000, 0.2f, -0.5f, 14, 9)});
     const int level = 2;  // localisation 16 px > both reaches
-    const LevelRegion region{20, 30, 90, 40};
+    const core::LevelRegion region{20, 30, 90, 40};
     const Sums s = run({curve}, level, region);
     int left = 0, right = 0;
     for (int y = region.y; y < region.y + region.height; ++y)
@@ -92,7 +92,7 @@ TEST(SynthCurves, StraightCourseUsesEachSidesGradientWithinItsReach) {
     EXPECT_GT(right, 100);
 }
 
-TEST(SynthCurves, SameDistanceOnBothSidesGivesEachSideItsGradient) {
+TEST(ConstraintCurves, SameDistanceOnBothSidesGivesEachSideItsGradient) {
     const CurveConstraint curve = straight(0, 201.5, 400, 201.5, {widget(0, 500, 0.3f, -0.1f, 12, 12)});
     const int level = 2;  // pixel rows at y = 4 p + 1.5: rows 48 and 52 are 8 px north and south
     const Sums s = run({curve}, level, {0, 40, 100, 20});
@@ -105,12 +105,12 @@ TEST(SynthCurves, SameDistanceOnBothSidesGivesEachSideItsGradient) {
     }
 }
 
-TEST(SynthCurves, ReachIsLocalisedPerLevel) {
+TEST(ConstraintCurves, ReachIsLocalisedPerLevel) {
     const CurveConstraint curve = straight(-2000, 1000.5, 3000, 1000.5, {widget(0, 0, 0, 0, 200, 200)});
     for (int level = 2; level <= 5; ++level) {
         const double localised = std::min(200.0, 4.0 * (1 << level));
         const int cy = 1000 >> level;
-        const LevelRegion region{0, cy - 10, 8, 21};
+        const core::LevelRegion region{0, cy - 10, 8, 21};
         const Sums s = run({curve}, level, region);
         double farthest = 0;
         for (int y = region.y; y < region.y + region.height; ++y) {
@@ -127,7 +127,7 @@ TEST(SynthCurves, ReachIsLocalisedPerLevel) {
     }
 }
 
-TEST(SynthCurves, HermiteInterpolationReproducesWidgetsAndIsSmooth) {
+TEST(ConstraintCurves, HermiteInterpolationReproducesWidgetsAndIsSmooth) {
     const std::vector<CurveWidget> widgets = {widget(0.2, 100, 0.1f, 0, 8, 8), widget(0.5, 400, 0.5f, 0, 16, 4),
                                               widget(0.8, 250, -0.2f, 0, 4, 12)};
     const CurveProfile profile(widgets, 400.0);
@@ -163,7 +163,7 @@ TEST(SynthCurves, HermiteInterpolationReproducesWidgetsAndIsSmooth) {
     EXPECT_FALSE(s.affected(80, 47));  // reach 4 at t = 0.8
 }
 
-TEST(SynthCurves, EndCapsInterpolateLeftAndRightAroundTheEnd) {
+TEST(ConstraintCurves, EndCapsInterpolateLeftAndRightAroundTheEnd) {
     // Left (north) reach 6, right (south) reach 15; gradients 0.1 and 0.3.
     const std::vector<CurveWidget> widgets = {widget(0, 50, 0.1f, 0.3f, 6, 15)};
     int checked = 0, affected_ahead = 0;
@@ -171,7 +171,7 @@ TEST(SynthCurves, EndCapsInterpolateLeftAndRightAroundTheEnd) {
         const double ex = 300 + shift, ey = 200 + 0.7 * shift;
         const CurveConstraint curve = straight(100 + shift, ey, ex, ey, widgets);
         const int level = 2;
-        const LevelRegion region{70, 40, 15, 22};
+        const core::LevelRegion region{70, 40, 15, 22};
         const Sums s = run({curve}, level, region);
         for (int y = region.y; y < region.y + region.height; ++y)
             for (int x = region.x; x < region.x + region.width; ++x) {
@@ -222,7 +222,7 @@ double sharpestNotch(const std::vector<uint8_t>& m, int width, int x0, int y0, i
     return worst;
 }
 
-TEST(SynthCurves, IsocurveSmoothingRemovesTheStepAtTheMedialAxis) {
+TEST(ConstraintCurves, IsocurveSmoothingRemovesTheStepAtTheMedialAxis) {
     // Figure 5: a course turning a right angle at (75, 75) with the reach jumping from 6 to 30 px
     // near the corner. On the concave side t jumps across the bisector, so the raw envelope has a
     // sharp notch there; the smoothed one must not.
@@ -259,7 +259,7 @@ TEST(SynthCurves, IsocurveSmoothingRemovesTheStepAtTheMedialAxis) {
         for (int x = 0; x < 8; ++x) EXPECT_EQ(before[y * n + x], after[y * n + x]) << x << "," << y;
 }
 
-TEST(SynthCurves, SmoothingChangesOnlyTheMedialAxisOfAnArcAndIsWindowIndependent) {
+TEST(ConstraintCurves, SmoothingChangesOnlyTheMedialAxisOfAnArcAndIsWindowIndependent) {
     // A 270-degree arc whose inner reach grows from 20 to 128 px: at level 4 (localisation 64) the
     // reach exceeds the 60 px radius, so t jumps on the concave side.
     CurveConstraint arc;
@@ -269,7 +269,7 @@ TEST(SynthCurves, SmoothingChangesOnlyTheMedialAxisOfAnArcAndIsWindowIndependent
     }
     arc.widgets = {widget(0, 0, 0, 0, 20, 20), widget(1, 0, 0, 0, 128, 128)};
     const int level = 4;
-    const LevelRegion region{0, 0, 26, 26};
+    const core::LevelRegion region{0, 0, 26, 26};
     const Sums raw = runSingle(arc, level, region, false), smoothed = runSingle(arc, level, region, true);
     int changed = 0;
     for (int y = 0; y < region.height; ++y)
@@ -284,18 +284,18 @@ TEST(SynthCurves, SmoothingChangesOnlyTheMedialAxisOfAnArcAndIsWindowIndependent
         }
     EXPECT_GT(changed, 0);
     // A sub-window gives bit-identical sums (synthesis windows must agree).
-    const LevelRegion sub{9, 7, 9, 11};
+    const core::LevelRegion sub{9, 7, 9, 11};
     const Sums part = runSingle(arc, level, sub, true);
     for (int y = sub.y; y < sub.y + sub.height; ++y)
         for (int x = sub.x; x < sub.x + sub.width; ++x)
             for (int k = 0; k < 3; ++k) EXPECT_EQ(part.at(x, y)[k], smoothed.at(x, y)[k]);
 }
 
-TEST(SynthCurves, SumsAccumulateOverCurves) {
+TEST(ConstraintCurves, SumsAccumulateOverCurves) {
     const CurveConstraint a = straight(0, 100, 300, 120, {widget(0, 100, 0.1f, 0.2f, 12, 12)});
     const CurveConstraint b = straight(0, 130, 300, 110.5, {widget(0, 900, -0.1f, 0.0f, 16, 8)});  // crosses a
     const CurveConstraint c = straight(0, 200, 300, 200, {widget(0, 300, 0.0f, 0.0f, 16, 16)});
-    const LevelRegion region{0, 15, 80, 45};
+    const core::LevelRegion region{0, 15, 80, 45};
     const Sums sa = run({a}, 2, region), sc = run({c}, 2, region), sac = run({a, c}, 2, region);
     for (size_t i = 0; i < sa.v.size(); ++i) EXPECT_NEAR(sac.v[i], sa.v[i] + sc.v[i], 1e-4 * (1 + std::abs(sac.v[i])));
     // Existing sums are added to, not overwritten.
@@ -309,7 +309,7 @@ TEST(SynthCurves, SumsAccumulateOverCurves) {
     EXPECT_GT(both, 0);
 }
 
-TEST(SynthCurves, JunctionsAgreeOnHeight) {
+TEST(ConstraintCurves, JunctionsAgreeOnHeight) {
     // Two straight courses crossing at (200, 200) with heights 100 and 300: both are pinned to 200.
     std::vector<CurveConstraint> curves = {straight(100, 200, 300, 200, {widget(0, 100, 0, 0, 12, 12)}),
                                            straight(200, 100, 200, 300, {widget(0, 300, 0, 0, 12, 12)})};
@@ -341,7 +341,7 @@ TEST(SynthCurves, JunctionsAgreeOnHeight) {
     EXPECT_NEAR(pinned[1].at(crossings[0].s_b).height, 500, 1e-9);
 }
 
-TEST(SynthCurves, SelfIntersectionIsAJunction) {
+TEST(ConstraintCurves, SelfIntersectionIsAJunction) {
     // A loop: east, then north, then west, then south across the first leg.
     CurveConstraint loop;
     loop.spline = false;
@@ -361,7 +361,7 @@ TEST(SynthCurves, SelfIntersectionIsAJunction) {
     EXPECT_NEAR(profiles[0].at(crossings[0].s_b).height, expected, 1e-6);
 }
 
-TEST(SynthCurves, SplineCourseInterpolatesItsPointsSmoothly) {
+TEST(ConstraintCurves, SplineCourseInterpolatesItsPointsSmoothly) {
     const std::vector<std::pair<double, double>> points = {{0, 0}, {100, 40}, {180, -20}, {260, 60}};
     const CourseSamples c = sampleCourse(points, true);
     ASSERT_GT(c.segments(), 200u);
@@ -387,4 +387,4 @@ TEST(SynthCurves, SplineCourseInterpolatesItsPointsSmoothly) {
 }
 
 }  // namespace
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <limits>
 
+#include "constraints/curve_geometry.h"
 #include "core/tile_journal.h"
 #include "synth/coherence_fields.h"
-#include "synth/curve_geometry.h"
 #include "synth/synthesis_driver.h"
 #include "synth/synthesis_plan.h"
 
@@ -176,7 +176,7 @@ IncrementalTerrain::EditArea IncrementalTerrain::areaAffectedBy(const SynthesisC
                 continue;
             float reach = 0.0f;
             for (const CurveWidget& w : c.widgets) reach = std::max({reach, w.left_reach_px, w.right_reach_px});
-            const auto course = synth::cachedCourse(c);
+            const auto course = constraints::cachedCourse(c);
             for (size_t i = 0; i < course->x.size(); ++i) disc(course->x[i], course->y[i], reach + 1.0);
         }
     };

@@ -1,12 +1,12 @@
 // Curve constraint properties along the course (Gain et al. 2015 s3: "We interpolate the widget
 // values to derive attributes elsewhere on the constraint curve, using Hermite curves").
-#include "synth/curve_profile.h"
+#include "constraints/curve_profile.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 namespace {
 
 CurveProperties valuesOf(const CurveWidget& w) {
@@ -127,4 +127,4 @@ CurveProperties capProperties(const CurveProperties& at_end, double leftness) {
 
 double junctionFalloff(double u) { return 1.0 - smoothstep(u); }
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "synth/curve_field.h"
+#include "constraints/curve_field.h"
 
 namespace terrasynth {
 
@@ -12,9 +12,9 @@ std::vector<CurveCourseSample> sampleCurveCourse(const std::vector<CurveConstrai
                                                  double step_px) {
     TERRASYNTH_REQUIRE(index < curves.size(), "sampleCurveCourse: no such curve");
     TERRASYNTH_REQUIRE(step_px > 0.0, "sampleCurveCourse: step must be > 0");
-    const synth::PinnedCurves pinned = synth::pinCurves(curves);
-    const synth::CourseSamples& c = *pinned.courses[index];
-    const synth::CurveProfile& profile = pinned.profiles[index];
+    const constraints::PinnedCurves pinned = constraints::pinCurves(curves);
+    const constraints::CourseSamples& c = *pinned.courses[index];
+    const constraints::CurveProfile& profile = pinned.profiles[index];
     std::vector<CurveCourseSample> out;
     if (c.segments() == 0) return out;
     const size_t count = static_cast<size_t>(std::ceil(c.length / step_px)) + 1;
@@ -33,7 +33,7 @@ std::vector<CurveCourseSample> sampleCurveCourse(const std::vector<CurveConstrai
         sample.t = profile.t(s);
         sample.left_x = len > 0.0 ? ey / len : 0.0;  // left of travel (see curve_raster.cpp)
         sample.left_y = len > 0.0 ? -ex / len : 0.0;
-        const synth::CurveProperties p = profile.at(s);
+        const constraints::CurveProperties p = profile.at(s);
         sample.height_m = static_cast<float>(p.height);
         sample.left_gradient = static_cast<float>(p.left_gradient);
         sample.right_gradient = static_cast<float>(p.right_gradient);

@@ -5,12 +5,12 @@
 
 #include <vector>
 
-#include "synth/curve_envelope.h"
-#include "synth/curve_geometry.h"
-#include "synth/curve_profile.h"
-#include "synth/synthesis_plan.h"
+#include "constraints/curve_envelope.h"
+#include "constraints/curve_geometry.h"
+#include "constraints/curve_profile.h"
+#include "core/level_region.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 
 // Smoothing parameters used for a level: jumps are arc-length differences of more than 3 level
 // pixels between grid neighbours; the smoothing window spans the localised envelope width.
@@ -23,10 +23,10 @@ EnvelopeSmoothing envelopeSmoothingForLevel(int level, double max_reach_px);
 // level pixels wide instead of a crease, and phi_d's tolerance is widened by kHeldCourseToleranceM
 // (through the blend's distance term), so the free levels keep their own detail and only what
 // strays beyond it is pulled back.
-void accumulateCurve(const CourseSamples& course, const CurveProfile& profile, int level, const LevelRegion& region,
+void accumulateCurve(const CourseSamples& course, const CurveProfile& profile, int level, const core::LevelRegion& region,
                      double meters_per_pixel0, bool smooth, std::vector<float>& sums, bool held_free_level = false);
 
 constexpr double kHeldFloorCells = 2.0;
 constexpr double kHeldCourseToleranceM = 80.0;
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

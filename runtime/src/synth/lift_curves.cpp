@@ -1,5 +1,5 @@
 // Curve heights that hold although the finest levels are free (s5.1 + windowed determinism): the
-// curve equivalent of point_lift.cpp.
+// curve equivalent of lift_points.cpp.
 //
 // The paper disables geometric constraints on the finest two levels; their detail then moves the
 // finished course away from the widgets' heights (measured: a median 3-4% of the relief). A lift
@@ -12,7 +12,7 @@
 #include <limits>
 #include <map>
 
-#include "synth/curve_field.h"
+#include "constraints/curve_field.h"
 #include "synth/lift_search.h"
 #include "terrasynth/synthesizer.h"
 
@@ -51,7 +51,7 @@ std::vector<float> resampledLift(const std::vector<float>& lift, size_t n) {
 }
 
 // Position of arc length s on the sampled course.
-std::pair<double, double> courseAt(const synth::CourseSamples& c, double s) {
+std::pair<double, double> courseAt(const constraints::CourseSamples& c, double s) {
     const size_t i = static_cast<size_t>(std::upper_bound(c.s.begin(), c.s.end(), s) - c.s.begin());
     if (i == 0) return {c.x.front(), c.y.front()};
     if (i >= c.s.size()) return {c.x.back(), c.y.back()};
@@ -122,14 +122,14 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftCurveConstraints(Synthes
     if (!params.constraints || params.constraints->curves.empty()) return params.constraints;
     auto lifted = std::make_shared<SynthesisConstraints>(*params.constraints);
     std::vector<CurveConstraint>& curves = lifted->curves;
-    const synth::PinnedCurves pinned = synth::pinCurves(curves);
+    const constraints::PinnedCurves pinned = constraints::pinCurves(curves);
 
     // Stations (moving ones: in the window) and the probes that inform them.
     std::vector<CurveStations> stations;
     std::vector<CourseProbe> probes;
     bool resampled = false;
     for (size_t c = 0; c < curves.size(); ++c) {
-        const synth::CourseSamples& course = *pinned.courses[c];
+        const constraints::CourseSamples& course = *pinned.courses[c];
         if (course.segments() == 0) continue;
         const size_t n = stationCount(course.length, options.station_spacing_px);
         CurveStations st;

@@ -7,7 +7,7 @@
 
 #include "terrasynth/constraints.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 
 // The course sampled finely enough that every segment is straight to well under a level-0 pixel:
 // a centripetal Catmull-Rom spline through the course points (no cusps or self-loops between close
@@ -49,4 +49,4 @@ inline SegmentHit closestOnSegment(const CourseSamples& c, size_t i, double px, 
     return {u, dx * dx + dy * dy};
 }
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "synth/curve_geometry.h"
-#include "synth/curve_profile.h"
-#include "synth/synthesis_plan.h"
+#include "constraints/curve_geometry.h"
+#include "constraints/curve_profile.h"
+#include "core/level_region.h"
 #include "terrasynth/constraints.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 
 // The courses of a set of curves and their properties along them with the junctions pinned and the
 // lifts set: what accumulateCurves rasterises, and what the finished course is measured against.
@@ -29,7 +29,7 @@ PinnedCurves pinCurves(const std::vector<CurveConstraint>& curves);
 // closest point. A pixel is affected only within the side's reach at t, localised per level to
 // min(reach, kPointLocalisation * 2^level) as for points. `sums` must have 3 * region.pixels() floats.
 // `held_free_level`: see accumulateCurve (curve_raster.h).
-void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region,
+void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const core::LevelRegion& region,
                       double meters_per_pixel0, std::vector<float>& sums, bool held_free_level = false);
 
 // The cost limits of curve constraints (limits.h): counts, coordinates within
@@ -38,4 +38,4 @@ void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, con
 // ("constraints.curves").
 Status checkCurveLimits(const std::vector<CurveConstraint>& curves, const std::string& where);
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -1,7 +1,7 @@
 // One curve constraint rasterised into a level's blend sums (Gain et al. 2015 s5.1): "A pixel within
 // the curve's envelope of effect is attached to the nearest point on the curve C(t) and the properties
 // at parameter t are fed to the same process as before (Equations 8, 9)."
-#include "synth/curve_raster.h"
+#include "constraints/curve_raster.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "terrasynth/status.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -133,7 +133,7 @@ EnvelopeSmoothing envelopeSmoothingForLevel(int level, double max_reach_px) {
     return s;
 }
 
-void accumulateCurve(const CourseSamples& course, const CurveProfile& profile, int level, const LevelRegion& region,
+void accumulateCurve(const CourseSamples& course, const CurveProfile& profile, int level, const core::LevelRegion& region,
                      double meters_per_pixel0, bool smooth, std::vector<float>& sums, bool held_free_level) {
     TERRASYNTH_REQUIRE(sums.size() == 3 * region.pixels(), "accumulateCurve: sums must hold 3 floats per region pixel");
     TERRASYNTH_REQUIRE(level >= 0 && level < 30, "accumulateCurve: level out of range");
@@ -201,4 +201,4 @@ void accumulateCurve(const CourseSamples& course, const CurveProfile& profile, i
         }
 }
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -1,15 +1,15 @@
 // Curve constraints (Gain et al. 2015 s5.1) rasterised into the correction kernel's blend sums.
-#include "synth/curve_field.h"
+#include "constraints/curve_field.h"
 
 #include <cmath>
 #include <mutex>
 
-#include "core/json_reader.h"
-#include "synth/curve_geometry.h"
-#include "synth/curve_junctions.h"
-#include "synth/curve_raster.h"
+#include "constraints/curve_geometry.h"
+#include "constraints/curve_junctions.h"
+#include "constraints/curve_raster.h"
+#include "core/number_text.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 namespace {
 
 // The courses' samplings and their crossings, cached by the samplings' identity: a synthesis asks
@@ -61,7 +61,7 @@ PinnedCurves pinCurves(const std::vector<CurveConstraint>& curves) {
     return pinned;
 }
 
-void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region,
+void accumulateCurves(const std::vector<CurveConstraint>& curves, int level, const core::LevelRegion& region,
                       double meters_per_pixel0, std::vector<float>& sums, bool held_free_level) {
     TERRASYNTH_REQUIRE(sums.size() == 3 * region.pixels(), "accumulateCurves: sums must hold 3 floats per region pixel");
     if (curves.empty()) return;
@@ -101,4 +101,4 @@ Status checkCurveLimits(const std::vector<CurveConstraint>& curves, const std::s
     return Status::ok();
 }
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

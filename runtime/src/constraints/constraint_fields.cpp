@@ -1,13 +1,11 @@
-#include "synth/constraint_fields.h"
+#include "constraints/constraint_fields.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "synth/curve_field.h"
-#include "core/hash.h"
+#include "constraints/curve_field.h"
 
-namespace terrasynth::synth {
-using core::levelSalt;
+namespace terrasynth::constraints {
 
 namespace {
 double smoothstep(double a) {
@@ -16,7 +14,7 @@ double smoothstep(double a) {
 }
 }  // namespace
 
-void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
+void accumulatePoint(const PointConstraint& point, int level, const core::LevelRegion& region, double meters_per_pixel0,
                      float sign, std::vector<float>& blend, double localisation_px) {
     const double cell = std::ldexp(1.0, level);
     // s5.1 shrinks a point's area of effect at finer levels to min(radius, 4 * 2^level) px. Here it
@@ -66,7 +64,7 @@ bool anyBlend(const std::vector<float>& blend) {
     return false;
 }
 
-void addCurveSums(const std::vector<CurveConstraint>& curves, int level, const LevelRegion& region, double meters_per_pixel0,
+void addCurveSums(const std::vector<CurveConstraint>& curves, int level, const core::LevelRegion& region, double meters_per_pixel0,
                   bool held_free_level, std::vector<float>& blend) {
     std::vector<float> sums(region.pixels() * 3, 0.0f);
     accumulateCurves(curves, level, region, meters_per_pixel0, sums, held_free_level);
@@ -76,7 +74,7 @@ void addCurveSums(const std::vector<CurveConstraint>& curves, int level, const L
 
 // A free level with held own pixels (s5.1 leaves these levels free): the points' 7x7 sites, and the
 // curves held softly (curve_raster.h).
-LevelConstraints heldOwnPixels(const SynthesisConstraints& constraints, int level, const LevelRegion& region,
+LevelConstraints heldOwnPixels(const SynthesisConstraints& constraints, int level, const core::LevelRegion& region,
                                double meters_per_pixel0) {
     LevelConstraints out;
     if (constraints.points.empty() && constraints.curves.empty()) return out;
@@ -91,7 +89,7 @@ LevelConstraints heldOwnPixels(const SynthesisConstraints& constraints, int leve
 }  // namespace
 
 LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
-                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0) {
+                                     bool hold_free_levels, const core::LevelRegion& region, double meters_per_pixel0) {
     LevelConstraints out;
     if (!constraints) return out;
     if (level < first_level) return hold_free_levels ? heldOwnPixels(*constraints, level, region, meters_per_pixel0) : out;
@@ -127,18 +125,4 @@ LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, in
     return out;
 }
 
-SeedTable seedTable(const DatabaseLevel& level) {
-    SeedTable table;
-    table.ranges.assign(2 * kMaxPaintableTypes, 0);
-    for (size_t t = 0; t < level.type_seeds.size() && t < static_cast<size_t>(kMaxPaintableTypes); ++t) {
-        table.ranges[2 * t] = static_cast<int32_t>(table.seeds.size());
-        table.ranges[2 * t + 1] = static_cast<int32_t>(level.type_seeds[t].size());
-        table.seeds.insert(table.seeds.end(), level.type_seeds[t].begin(), level.type_seeds[t].end());
-    }
-    if (table.seeds.empty()) table.seeds.push_back(0);
-    return table;
-}
-
-uint32_t seedingSalt(uint32_t seed, int level) { return levelSalt(seed, level, 3); }
-
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

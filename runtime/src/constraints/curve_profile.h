@@ -7,7 +7,7 @@
 
 #include "terrasynth/constraints.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 
 // Heights in metres, gradients in metres per metre away from the course, reaches in level-0 pixels.
 struct CurveProperties {
@@ -78,4 +78,4 @@ CurveProperties capProperties(const CurveProperties& at_end, double leftness);
 // Smooth bump for junction blending: 1 at 0, 0 from 1 on, C1 (Hermite).
 double junctionFalloff(double u);
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 
 // One level's working grid around a curve: per pixel the envelope function f = (d - reach(t(p))) in
 // level pixels (inside where f < 0; +infinity where the distance was not computed) and the arc length
@@ -39,4 +39,4 @@ std::vector<uint8_t> envelopeMask(const EnvelopeGrid& grid, const EnvelopeSmooth
 // grids must extend this far beyond the pixels whose mask is used.
 int envelopeInfluencePx(const EnvelopeSmoothing& smoothing);
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints

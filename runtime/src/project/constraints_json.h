@@ -8,10 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "terrasynth/constraints.h"
-#include "terrasynth/grid.h"
 #include "terrasynth/heightfield_io.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::project {
 
 // The 8-bit mask a constraints object names (its "mask" string, as written); errors name the mask.
 using MaskReader = std::function<Result<Image8>(const std::string& name)>;
@@ -20,11 +19,8 @@ MaskReader masksFromFolder(const std::string& base_dir);
 // Masks from a constraintsToJson result, by the name its JSON gives them.
 MaskReader masksFrom(const ConstraintsJson& written);
 
-// `paint` on the pixels of `window` (nearest; pixels outside the paint read `outside`).
-std::vector<uint8_t> paintOnWindow(const TypePaint& paint, const PixelWindow& window, uint8_t outside);
-
 Result<SynthesisConstraints> parseConstraintsJson(const nlohmann::json& constraints, const MaskReader& masks,
                                                   const ExemplarDatabase& db, int64_t extent_x, int64_t extent_y,
                                                   int extent_width, int extent_height);
 
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::project

@@ -5,11 +5,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "synth/synthesis_plan.h"
+#include "core/level_region.h"
 #include "terrasynth/constraints.h"
-#include "terrasynth/database.h"
 
-namespace terrasynth::synth {
+namespace terrasynth::constraints {
 
 struct LevelConstraints {
     // Per region pixel, 4 floats: the inverse-distance blend sums of s5.1 over every point and curve
@@ -31,7 +30,7 @@ struct LevelConstraints {
 // From `first_level` up, a point acts over its whole radius (accumulatePoint) and a curve over its
 // reach localised to min(reach, kPointLocalisation * 2^level).
 LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
-                                     bool hold_free_levels, const LevelRegion& region, double meters_per_pixel0);
+                                     bool hold_free_levels, const core::LevelRegion& region, double meters_per_pixel0);
 
 // Half the width of a point's own 7x7 pixels (level-0 pixels from the site): held on the free levels
 // so the slope seen over them holds.
@@ -39,16 +38,7 @@ constexpr double kSiteHalfWidthPx = 3.5;
 
 // Adds (sign +1) or removes (-1) one point constraint's terms to/from 4-float blend sums of `region`,
 // over its whole radius, or with `localisation_px` > 0 over min(radius, localisation_px).
-void accumulatePoint(const PointConstraint& point, int level, const LevelRegion& region, double meters_per_pixel0,
+void accumulatePoint(const PointConstraint& point, int level, const core::LevelRegion& region, double meters_per_pixel0,
                      float sign, std::vector<float>& blend, double localisation_px = 0.0);
 
-// Flattened per-type seed lists of a level: offsets/counts per type (up to kMaxPaintableTypes).
-struct SeedTable {
-    std::vector<uint32_t> seeds;
-    std::vector<int32_t> ranges;  // 2 per type: offset, count
-};
-SeedTable seedTable(const DatabaseLevel& level);
-
-uint32_t seedingSalt(uint32_t seed, int level);
-
-}  // namespace terrasynth::synth
+}  // namespace terrasynth::constraints
