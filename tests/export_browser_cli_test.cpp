@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -28,13 +27,9 @@ TEST(BrowserView, CesiumShowsTheBakedTerrainInHeadlessChromium) {
             << module << " is not installed: run `npm ci --prefix scripts` in the repository";
 
     const std::string dir = test::scratchDir("browser_view");
-    test::defaultDatabase();
-    const nlohmann::json project = {{"format", "terrasynth-project"}, {"version", 1},
-                                    {"database", test::defaultDatabasePath()}, {"size", {1024, 1024}},
-                                    {"synthesis", {{"seed", 3}}}};
-    std::ofstream(dir + "/world.tsyn") << project.dump(1);
+    const std::string project = test::defaultDatabaseProject(dir, 3);
     const test::CliRun bake =
-        test::runTerrasynth("bake '" + dir + "/world.tsyn' -o '" + dir + "/world' --region 0,0,513,513 --tile 128 --levels 3 --progress none");
+        test::runTerrasynth("bake '" + project + "' -o '" + dir + "/world' --region 0,0,513,513 --tile 128 --levels 3 --progress none");
     ASSERT_EQ(bake.exit_code, 0) << bake.out;
 
     const std::string shot = dir + "/view.png";

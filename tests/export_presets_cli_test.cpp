@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -16,17 +15,6 @@
 using namespace terrasynth;
 
 namespace {
-
-// A project over the shipped exemplars, using the tests' shared database.
-std::string writeProject(const std::string& dir) {
-    test::defaultDatabase();
-    const nlohmann::json project = {{"format", "terrasynth-project"}, {"version", 1},
-                                    {"database", test::defaultDatabasePath()}, {"size", {1024, 1024}},
-                                    {"synthesis", {{"seed", 5}}}};
-    const std::string path = dir + "/world.tsyn";
-    std::ofstream(path) << project.dump(1);
-    return path;
-}
 
 // 16-bit samples of a preset's heightmap, little-endian for .r16/.raw.
 std::vector<uint16_t> readSamples(const std::string& path, int width, int height) {
@@ -147,7 +135,7 @@ TEST(EnginePresets, TilesShareEdgesAndAreNamedForTheEnginesTiledImport) {
 
 TEST(EnginePresets, ProjectHeightsRoundTripThroughTheStatedScaleWithinOneStep) {
     const std::string dir = test::scratchDir("presets_roundtrip");
-    const std::string project = writeProject(dir);
+    const std::string project = test::defaultDatabaseProject(dir, 5);
     // A 250x200 region at level 1; the presets grow it east and south to their sizes.
     const std::string region = " --region 40,60,250,200 --level 1";
     struct Case {

@@ -133,24 +133,25 @@ struct TypeMaskOptions {
     // Box-blur radius in pixels; 0 = hard 0/255 masks. With blur the masks of all types still sum to
     // 255 at every pixel (largest-remainder rounding), ready for texture splatting.
     int blur_radius = 0;
-    // Appended to each mask's name before ".png" (a tile's "_x0_y0", so engines see a tile set).
-    std::string name_suffix;
 };
 
 // One 8-bit grayscale PNG per terrain type, "<prefix><type name>.png" (names sanitised to
 // [A-Za-z0-9_-]), 255 where the pixel's type is that type. `types` is width*height type ids (see
 // typesFromSources); pixels of unknown type (255) are 0 in every mask. Returns the paths written, in
 // type order; types absent from the map still get an (all-zero) mask so splat channels are stable.
-// The path writeTypeMasks writes the mask of type `index` to.
+// The path writeTypeMasks writes the mask of type `index` to, with `suffix` before ".png".
 std::string typeMaskPath(const std::string& prefix, const std::vector<std::string>& type_names, size_t index,
                          const std::string& suffix = "");
 Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int width, int height,
                                                 const std::vector<uint8_t>& types,
                                                 const std::vector<std::string>& type_names,
                                                 const TypeMaskOptions& options = {});
+// The same, staged; `name_suffix` goes before each mask's ".png" (a tile's "_x0_y0", so that engines
+// see a tile set).
 Result<std::vector<std::string>> stageTypeMasks(FileTransaction& transaction, const std::string& prefix, int width,
                                                 int height, const std::vector<uint8_t>& types,
                                                 const std::vector<std::string>& type_names,
-                                                const TypeMaskOptions& options = {});
+                                                const TypeMaskOptions& options = {},
+                                                const std::string& name_suffix = "");
 
 }  // namespace terrasynth

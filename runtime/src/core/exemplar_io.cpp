@@ -138,9 +138,16 @@ Result<Exemplar> readRawF32Exemplar(const std::string& path) {
 
 Result<Exemplar> readExemplar(const std::string& path, const PlainPngScale* plain) {
     const std::string ext = lowerExtension(path);
-    Result<Exemplar> result = ext == ".png"                  ? readPngExemplar(path, plain)
-                              : ext == ".f32" || ext == ".raw" ? readRawF32Exemplar(path)
-                                                               : detail::readGdalExemplar(path);
+    Result<Exemplar> result = Status::error(path + ": unsupported exemplar format \"" + ext +
+                                            "\" (use .png or .f32/.raw with a JSON sidecar, or a raster GDAL reads: .tif, "
+                                            ".hgt, .asc, .vrt, ...)");
+    if (ext == ".png") {
+        result = readPngExemplar(path, plain);
+    } else if (ext == ".f32" || ext == ".raw") {
+        result = readRawF32Exemplar(path);
+    } else if (detail::isGdalDemExtension(ext) || (detail::pathExists(path) && detail::gdalRecognisesRaster(path))) {
+        result = detail::readGdalExemplar(path);  // past the usual DEM formats, any raster GDAL recognises
+    }
     if (!result) return result;
     Status valid = validateHeightfield(result->field);
     if (!valid) return valid.withContext(path);

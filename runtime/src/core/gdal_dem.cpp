@@ -138,6 +138,11 @@ bool isGdalDemExtension(const std::string& extension) {
     return extension == ".tif" || extension == ".tiff" || extension == ".hgt" || extension == ".asc" || extension == ".vrt";
 }
 
+bool gdalRecognisesRaster(const std::string& path) {
+    QuietGdalErrors quiet;
+    return GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, nullptr) != nullptr;
+}
+
 Result<Exemplar> readGdalExemplar(const std::string& path) {
     QuietGdalErrors quiet;
     DatasetPtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));

@@ -13,6 +13,9 @@ namespace terrasynth::detail {
 // sidecar: .tif, .tiff, .hgt, .asc, .vrt. Other extensions still reach GDAL through readExemplar.
 bool isGdalDemExtension(const std::string& extension);
 
+// Whether one of GDAL's raster drivers recognises `path` (without opening it as a dataset).
+bool gdalRecognisesRaster(const std::string& path);
+
 // Reads band 1 of `path`. A JSON sidecar beside it (same stem) may give meters_per_pixel, which then
 // wins over the CRS, and the usual provenance and type mask. Without one the raster needs a
 // north-up geotransform and a CRS: projected or local ones give the spacing in their linear unit,

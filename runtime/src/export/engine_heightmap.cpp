@@ -228,8 +228,8 @@ Result<EngineImport> stageEngineHeightmap(FileTransaction& transaction, const En
                 if (!types) return types.status().withContext(path + " masks");
                 TypeMaskOptions mask_options;
                 mask_options.blur_radius = options.mask_blur;
-                mask_options.name_suffix = tileSuffix(plan, tx, ty);
-                auto masks = stageTypeMasks(transaction, stem + "_", field.width, field.height, *types, options.type_names, mask_options);
+                auto masks = stageTypeMasks(transaction, stem + "_", field.width, field.height, *types, options.type_names,
+                                            mask_options, tileSuffix(plan, tx, ty));
                 if (!masks) return masks.status();
                 for (const std::string& m : *masks) {
                     entry["masks"].push_back(detail::baseName(m));
