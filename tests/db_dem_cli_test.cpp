@@ -193,6 +193,19 @@ TEST(DemImport, TenPercentNoDataHoleIsNeverCopied) {
         }
         EXPECT_EQ(near_hole, 0u) << backend << ": pixels copied from the hole or its margin";
     }
+
+    // synth -o .tif: the same heights as a float32 GeoTIFF in a local metric CRS, which reads back
+    // through GDAL at the database spacing.
+    const test::CliRun geotiff = test::runTerrasynth("synth --db '" + dir + "/holed.tsdb' -o '" + dir +
+                                                     "/reference.tif' --size 320x320 --seed 7 --backend reference");
+    ASSERT_EQ(geotiff.exit_code, 0) << geotiff.out;
+    auto from_tif = readExemplar(dir + "/reference.tif");
+    ASSERT_TRUE(from_tif) << from_tif.message();
+    auto from_f32 = readExemplar(dir + "/reference.f32");
+    ASSERT_TRUE(from_f32) << from_f32.message();
+    EXPECT_EQ(from_tif->field.heights, from_f32->field.heights);
+    EXPECT_NEAR(from_tif->field.meters_per_pixel_x, 92.6, 1e-9);
+    EXPECT_TRUE(from_tif->nodata.empty());
 }
 
 TEST(DemImport, VoidsAreNoMatchNoCandidateAndNoSeedInTheDatabase) {
