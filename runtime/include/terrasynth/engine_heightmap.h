@@ -61,7 +61,7 @@ struct EngineExportOptions {
     std::string path;
     int level = 0;                   // source level the plan's region is on
     // Optional terrain types per pixel: one 8-bit splat mask per type beside each heightmap,
-    // "<stem>_<type>[tile suffix].png", row 0 north (TypeMaskOptions blur).
+    // "<stem>_<type>[tile suffix].png", row 0 north, box-blurred by `mask_blur` pixels (0: hard).
     TypeSource types;
     std::vector<std::string> type_names;
     int mask_blur = 0;

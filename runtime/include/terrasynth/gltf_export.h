@@ -52,8 +52,8 @@ enum class LodLayout {
     // (Unreal's LOD import, Unity's LODGroup) want. The default.
     Files,
     // One file: each tile node holds LOD 0 and names its coarser nodes through MSFT_lod. Those nodes
-    // are outside the scene, so clients that ignore the extension draw LOD 0 only (three.js, the
-    // glTF sample viewer), but importers that read every node (Blender 3.4) draw all LODs at once.
+    // are outside the scene, so clients that ignore the extension draw LOD 0 only (three.js), but
+    // importers that read every node (Blender 3.4) draw all LODs at once.
     MsftLod,
 };
 
@@ -107,8 +107,9 @@ bool isGltfPath(const std::string& path);
 std::string gltfLodPath(const std::string& path, int lod);
 
 // Writes `path` (.glb binary, or .gltf JSON plus <stem>.bin beside it; with LodLayout::Files and
-// several LODs also the gltfLodPath files) from the heights `source` gives for options.region. Files are written to temporaries and renamed into place. Errors: the
-// source's error (with the window), bad options (message names the option), unwritable paths.
+// several LODs also the gltfLodPath files) from the heights `source` gives for options.region.
+// Files are written to temporaries and renamed into place. Errors: the source's error (with the
+// window), bad options (message names the option), unwritable paths.
 Result<GltfExportStats> exportGltf(const std::string& path, const HeightSource& source,
                                    const GltfExportOptions& options);
 // The same, staged into `transaction` (.bin first, the .gltf that names it last) to be committed
