@@ -1,6 +1,8 @@
 // terrasynth db build <exemplar files or dirs> -o db.tsdb [--levels N] [--meters-per-pixel M]
 #include <chrono>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "command_registry.h"
 #include "outputs.h"
@@ -33,6 +35,12 @@ void runDbBuild(const DbBuildArgs& args) {
             std::fprintf(stderr, "\r  %-12s %3.0f%%", stage.c_str(), progress * 100.0);
             std::fflush(stderr);
         };
+    std::vector<std::string> void_lines;  // printed after the progress lines
+    options.on_voids = [&](const ExemplarInfo& exemplar, double share) {
+        char line[64];
+        std::snprintf(line, sizeof line, ": %.1f%% voids (NoData), never copied", 100.0 * share);
+        void_lines.push_back(exemplar.path + line);
+    };
     const auto start = std::chrono::steady_clock::now();
     auto db = buildDatabase(args.inputs, options);
     if (!args.quiet) std::fprintf(stderr, "\n");
@@ -43,6 +51,7 @@ void runDbBuild(const DbBuildArgs& args) {
     const ExemplarDatabase& d = *db.value();
     std::printf("wrote %s: %zu exemplars, %zu types, %d levels, %.3f m/pixel\n", args.output.c_str(),
                 d.exemplars.size(), d.type_names.size(), d.levelCount(), d.meters_per_pixel);
+    for (const std::string& line : void_lines) std::printf("%s\n", line.c_str());
     std::printf("memory: %zu bytes for %zu base pixels = %.2f bytes per base pixel (paper: 42.67)\n",
                 d.memoryBytes(), d.basePixelCount(), d.bytesPerBasePixel());
     std::printf("built in %.2f s\n", seconds);
@@ -53,7 +62,7 @@ void addDbCommand(CLI::App& app) {
     db->require_subcommand(1);
     auto args = std::make_shared<DbBuildArgs>();
     auto* build = db->add_subcommand("build", "Build a database from exemplar files or folders");
-    build->add_option("inputs", args->inputs, "Exemplar files (PNG+JSON, F32+JSON, TIF) or folders")->required();
+    build->add_option("inputs", args->inputs, "Exemplar files (PNG+JSON, F32+JSON, or any GDAL raster: .tif, .hgt, .asc, .vrt) or folders")->required();
     build->add_option("-o,--output", args->output, "Database file to write (.tsdb)")->required();
     build->add_option("--levels", args->levels, "Coarsest pyramid level L (levels 0..L)")->check(CLI::Range(1, 12));
     build->add_option("--meters-per-pixel", args->meters_per_pixel,

@@ -1,6 +1,8 @@
 // `terrasynth export <project.tsyn> | --heightmap in.png  -o out.glb|.gltf|.png|.f32|.exr|.tif
-//   [--region X,Y,W,H] [--level L] [--tile 256] [--lods N] [--lod-method grid|simplify] [--quantize]
+//   [--region X,Y,W,H] [--level L] [--tile 256] [--lods N] [--lod-method grid|simplify]
+//   [--lod-layout files|msft] [--quantize]
 //   [--colors] [--texture N] [--masks PREFIX [--mask-blur R]]`
+// `terrasynth export <project.tsyn> | --heightmap in.png --preset unreal|unity|godot -o out.png|.r16|.raw|.exr`
 // Meshes (glTF 2.0) or heightmaps of a project's terrain or of any exemplar file; docs/export.md.
 #include <cstdio>
 #include <memory>
@@ -9,6 +11,7 @@
 
 #include "command_registry.h"
 #include "outputs.h"
+#include "terrasynth/engine_heightmap.h"
 #include "terrasynth/file_transaction.h"
 #include "terrasynth/limits.h"
 #include "terrasynth/gltf_export.h"
@@ -21,10 +24,10 @@ namespace {
 const char* kCommand = "export";
 
 struct ExportArgs {
-    std::string project, heightmap, output, masks;
+    std::string project, heightmap, output, masks, preset;
     std::vector<int64_t> region;
     int level = 0, tile = 256, lods = 1, texture = 0, mask_blur = 0;
-    std::string lod_method = "grid";
+    std::string lod_method = "grid", lod_layout = "files";
     bool quantize = false, colors = false;
 };
 
@@ -67,7 +70,12 @@ Result<Input> openInput(const ExportArgs& a) {
 Status checkExportOutputs(const ExportArgs& a) {
     std::vector<PlannedOutput> planned = {{"-o", a.output}};
     if (isGltfPath(a.output)) {
-        if (hasSuffix(a.output, ".gltf")) planned.push_back({"-o (its .bin)", a.output.substr(0, a.output.size() - 5) + ".bin"});
+        const int files = a.lod_layout == "files" ? a.lods : 1;
+        for (int lod = 0; lod < files; ++lod) {
+            const std::string file = gltfLodPath(a.output, lod);
+            if (lod > 0) planned.push_back({"-o (LOD " + std::to_string(lod) + ")", file});
+            if (hasSuffix(file, ".gltf")) planned.push_back({"-o (its .bin)", file.substr(0, file.size() - 5) + ".bin"});
+        }
     } else {
         if (Status s = checkHeightmapExportPath(a.output); !s) return s.withContext("-o");
         if (!hasSuffix(a.output, ".exr") && !hasSuffix(a.output, ".tif") && !hasSuffix(a.output, ".tiff"))
@@ -77,9 +85,34 @@ Status checkExportOutputs(const ExportArgs& a) {
     return checkOutputs(planned);
 }
 
+// --preset: the region fitted to the engine's sizes, heightmap tiles, splat masks (projects) and the
+// JSON with the import numbers, all in one transaction.
+Status runPreset(const ExportArgs& a, const Input& input, const PixelWindow& region) {
+    auto engine = engineNamed(a.preset);
+    if (!engine) return engine.status().withContext("--preset");
+    auto plan = planEngineHeightmap(*engine, region, /*endless=*/a.heightmap.empty());
+    if (!plan) return plan.status().withContext("--preset " + a.preset);
+    EngineExportOptions options;
+    options.path = a.output;
+    options.level = a.level;
+    options.types = input.types;
+    options.type_names = input.type_names;
+    options.mask_blur = a.mask_blur;
+    FileTransaction transaction;
+    auto written = stageEngineHeightmap(transaction, *plan, input.heights, options);
+    if (!written) return written.status();
+    if (Status s = transaction.commit(); !s) return s;
+    for (const std::string& f : written->files) std::printf("wrote %s\n", f.c_str());
+    std::printf("%s\n", written->summary.c_str());
+    return Status::ok();
+}
+
 Status runExport(const ExportArgs& a) {
     if (a.project.empty() == a.heightmap.empty()) return Status::error("give either a project or --heightmap");
-    if (Status s = checkExportOutputs(a); !s) return s;
+    if (!a.preset.empty() && (isGltfPath(a.output) || !a.masks.empty()))
+        return Status::error("--preset writes engine heightmaps (and their masks): -o must be .png, .r16, .raw or .exr, "
+                             "without --masks");
+    if (Status s = a.preset.empty() ? checkExportOutputs(a) : checkOutputs({{"-o", a.output}}); !s) return s;
     auto input = openInput(a);
     if (!input) return input.status();
     PixelWindow region = input->extent;
@@ -96,6 +129,8 @@ Status runExport(const ExportArgs& a) {
         region.x >>= a.level, region.y >>= a.level;
         region.width = std::max(2, region.width >> a.level), region.height = std::max(2, region.height >> a.level);
     }
+
+    if (!a.preset.empty()) return runPreset(a, *input, region);
 
     // Masks and the export change together: one transaction, committed at the end.
     FileTransaction transaction;
@@ -129,6 +164,8 @@ Status runExport(const ExportArgs& a) {
     options.lods = a.lods;
     if (a.lod_method == "simplify") options.lod_method = LodMethod::Simplify;
     else if (a.lod_method != "grid") return Status::error("--lod-method: expected grid or simplify, got " + a.lod_method);
+    if (a.lod_layout == "msft") options.lod_layout = LodLayout::MsftLod;
+    else if (a.lod_layout != "files") return Status::error("--lod-layout: expected files or msft, got " + a.lod_layout);
     options.quantize = a.quantize;
     options.vertex_colors = a.colors;
     options.texture_size = a.texture;
@@ -139,6 +176,7 @@ Status runExport(const ExportArgs& a) {
     for (const std::string& p : mask_paths) std::printf("wrote %s\n", p.c_str());
     std::printf("wrote %s: %d x %d tiles, %d LODs, %zu bytes (JSON %zu, binary %zu)\n", a.output.c_str(), stats->tiles_x,
                 stats->tiles_y, a.lods, stats->file_bytes, stats->json_bytes, stats->binary_bytes);
+    for (size_t k = 1; k < stats->files.size(); ++k) std::printf("wrote %s: LOD %zu\n", stats->files[k].c_str(), k);
     for (size_t k = 0; k < stats->lods.size(); ++k)
         std::printf("  LOD %zu: %zu vertices, %zu triangles, geometric error up to %.2f m\n", k, stats->lods[k].vertices,
                     stats->lods[k].triangles, stats->lods[k].max_geometric_error_m);
@@ -157,13 +195,18 @@ void addExportCommand(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--level", a->level, "Pyramid level (0 = full resolution)")->check(CLI::Range(0, 12));
     cmd->add_option("--tile", a->tile, "Quads per tile side")->check(CLI::Range(1, 4096));
-    cmd->add_option("--lods", a->lods, "Levels of detail per tile (MSFT_lod)")->check(CLI::Range(1, 8));
+    cmd->add_option("--lods", a->lods, "Levels of detail per tile (see --lod-layout)")->check(CLI::Range(1, 8));
     cmd->add_option("--lod-method", a->lod_method, "grid (stitched, fast) or simplify (meshoptimizer)");
+    cmd->add_option("--lod-layout", a->lod_layout,
+                    "files (default: one whole terrain per LOD, out.glb, out_lod1.glb, ...) or msft (one file, MSFT_lod)");
     cmd->add_flag("--quantize", a->quantize, "KHR_mesh_quantization: 16-bit positions, 8-bit normals, 16-bit indices");
     cmd->add_flag("--colors", a->colors, "Vertex colours: hypsometric tint (+ terrain types for projects)");
     cmd->add_option("--texture", a->texture, "Embed a tint texture of at most N pixels per side")->check(CLI::Range(0, 8192));
     cmd->add_option("--masks", a->masks, "Also write one PNG mask per terrain type: PREFIX<type>.png (projects only)");
     cmd->add_option("--mask-blur", a->mask_blur, "Blur radius (pixels) for soft splat masks")->check(CLI::Range(0, 64));
+    cmd->add_option("--preset", a->preset,
+                    "unreal|unity|godot: a heightmap in the engine's sizes and format (tiled when larger than one "
+                    "landscape), splat masks beside it, and <stem>.json + a printed line with the import numbers");
     setAction(cmd, [a] {
         if (Status s = runExport(*a); !s) fail(kCommand, s.message());
     });

@@ -1,4 +1,4 @@
-// terrasynth synth <project.tsyn | --db db.tsdb> -o out.png|out.f32|out.exr [--size WxH] [--origin X,Y]
+// terrasynth synth <project.tsyn | --db db.tsdb> -o out.png|out.f32|out.exr|out.tif [--size WxH] [--origin X,Y]
 //                  [--seed N] [--level L] [--sources src.png] [--preview hillshade.png] [--backend opencl|reference]
 //                  [--drainage off|breach]
 //                  [--coherent-with previous.tsyn]
@@ -15,6 +15,7 @@
 #include "outputs.h"
 #include "terrasynth/curve_course.h"
 #include "terrasynth/file_transaction.h"
+#include "terrasynth/gltf_export.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/terrain.h"
 
@@ -122,9 +123,10 @@ Result<Project> projectWithOverrides(const std::string& project_path, const Synt
 
 // Everything `synth` will write, checked before any synthesis.
 Status checkSynthOutputs(const SynthArgs& args) {
-    if (Status s = checkHeightfieldPath(args.output); !s) return s;
+    if (Status s = checkHeightmapExportPath(args.output); !s) return s;
     std::vector<PlannedOutput> planned = {{"-o", args.output}};
-    if (!hasSuffix(args.output, ".exr")) planned.push_back({"-o (its sidecar)", sidecarOf(args.output)});
+    if (!hasSuffix(args.output, ".exr") && !hasSuffix(args.output, ".tif") && !hasSuffix(args.output, ".tiff"))
+        planned.push_back({"-o (its sidecar)", sidecarOf(args.output)});
     if (!args.preview.empty()) {
         if (!hasSuffix(args.preview, ".png")) return Status::error("--preview: " + args.preview + ": must end in .png");
         planned.push_back({"--preview", args.preview});
@@ -138,15 +140,17 @@ Status checkSynthOutputs(const SynthArgs& args) {
 }
 
 // All outputs in one transaction: the preview and sources map first, the heightmap and its sidecar
-// last; on any failure every previous file stays as it was.
-Status writeOutputs(const SynthArgs& args, const Heightfield& heights, const SynthesisOutput* sources = nullptr,
-                    const ExemplarDatabase* db = nullptr) {
+// last; on any failure every previous file stays as it was. `window` places a GeoTIFF in the local
+// metric frame (x east, y north, metres; the global pixel grid's origin at 0, 0).
+Status writeOutputs(const SynthArgs& args, const Heightfield& heights, const PixelWindow& window,
+                    const SynthesisOutput* sources = nullptr, const ExemplarDatabase* db = nullptr) {
     FileTransaction transaction;
     if (!args.preview.empty())
         if (Status s = stageHillshadePng(transaction, args.preview, heights); !s) return s;
     if (sources)
         if (Status s = stageSourcesMap(transaction, args.sources, *sources, *db, args.level); !s) return s;
-    if (Status s = stageHeightfield(transaction, args.output, heights); !s) return s;
+    const double origin_x = window.x * heights.meters_per_pixel_x, origin_y = -window.y * heights.meters_per_pixel_y;
+    if (Status s = stageHeightmapExport(transaction, args.output, heights, origin_x, origin_y); !s) return s;
     return transaction.commit();
 }
 
@@ -164,7 +168,7 @@ void runCoherentEdit(const SynthArgs& args, const TerrainOptions& options, Terra
     auto heights = edited.heightsAfterEditOf(*previous.value(), &changed, &before);
     if (!heights) return fail("synth", heights.message());
     const auto done = std::chrono::steady_clock::now();
-    Status s = writeOutputs(args, heights.value());
+    Status s = writeOutputs(args, heights.value(), edited.extent());
     if (!s) return fail("synth", s.message());
     // How far the edit reached: the box of what changed, and how much of the extent moved by more than 1 m.
     size_t moved = 0;
@@ -201,7 +205,7 @@ void runSynth(const SynthArgs& args) {
     auto out = terrain.value()->synthesize(window, args.level, !args.sources.empty());
     if (!out) return fail("synth", out.message());
     const auto done = std::chrono::steady_clock::now();
-    Status s = writeOutputs(args, out->heights, args.sources.empty() ? nullptr : &out.value(),
+    Status s = writeOutputs(args, out->heights, window, args.sources.empty() ? nullptr : &out.value(),
                             &terrain.value()->database());
     if (!s) return fail("synth", s.message());
     const HeightRange range = heightRange(out->heights);
@@ -219,7 +223,7 @@ void addSynthCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("synth", "Synthesize a terrain (paper s4) and write it as a heightmap");
     cmd->add_option("project", args->project, "Project file (.tsyn)");
     cmd->add_option("--db", args->database, "Database file (.tsdb) instead of a project");
-    cmd->add_option("-o,--output", args->output, "Heightmap to write: .png (16-bit + sidecar), .f32, .exr")->required();
+    cmd->add_option("-o,--output", args->output, "Heightmap to write: .png (16-bit + sidecar), .f32, .exr, .tif (float32 GeoTIFF, local metric CRS)")->required();
     cmd->add_option("--size", args->size, "WxH in pixels (default: the project's, 1024x1024)");
     cmd->add_option("--origin", args->origin, "X,Y global pixel of the north-west corner (default 0,0)");
     cmd->add_option("--seed", args->seed, "Random seed (default: the project's)");

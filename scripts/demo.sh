@@ -13,5 +13,5 @@ build/bin/terrasynth db build data/exemplars -o data/default.tsdb
 build/bin/terrasynth synth data/default.tsyn -o out/terrain.png --preview out/terrain_hillshade.png \
   --sources out/terrain_sources.png
 build/bin/terrasynth stats out/terrain.png
-build/bin/terrasynth export data/default.tsyn -o out/terrain.glb --lods 3
+build/bin/terrasynth export data/default.tsyn -o out/terrain.glb --lods 3   # + terrain_lod1.glb, terrain_lod2.glb
 echo "demo: results in out/ (terrain.png + .json, terrain_hillshade.png, terrain_sources.png, terrain.glb)"

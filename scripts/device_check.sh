@@ -16,6 +16,13 @@ pack=$root/.device
 
 main() {
 
+# device_pack.sh packs binaries and libraries into one archive: unpack it in place (Python's tarfile
+# where tar has no xz).
+if [ -f "$pack/payload.tar.xz" ]; then
+  python3 -c 'import sys, tarfile; tarfile.open(sys.argv[1]).extractall(sys.argv[2])' "$pack/payload.tar.xz" "$pack" ||
+    tar -C "$pack" -xJf "$pack/payload.tar.xz"
+fi
+
 echo "== machine"
 nvidia-smi -L 2>&1 | head -3
 nproc

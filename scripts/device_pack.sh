@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fills .device/ (ignored by git) with what scripts/device_check.sh runs on a lent GPU machine:
 # the built OpenCL tests, synth_bench and the CLI, and the non-system shared libraries they load
-# (that machine runs another distribution and has no package registry).
+# (that machine runs another distribution and has no package registry), packed into one archive.
 #   COMPARE_WITH=/path/to/older/synth_bench bash scripts/device_pack.sh   (optional)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,5 +22,10 @@ ldd .device/bin/* .device/tests/* | awk '/=> \//{print $3}' | sort -u |
 # The binaries carry this checkout's absolute paths (data, build); device_check.sh links them there.
 pwd >.device/checkout_path
 (cd "$build" && pwd) >.device/build_path
-grep -qx '/.device/' .git/info/exclude 2>/dev/null || echo '/.device/' >>.git/info/exclude
+# GDAL's dependencies alone come to ~150 MB and the device tool carries at most 64 MiB with the
+# checkout: binaries and libraries travel as one xz archive (~50 MB), which device_check.sh unpacks.
+tar -C .device -cf - bin tests lib libz | xz -T2 -6 >.device/payload.tar.xz
+rm -rf .device/bin .device/tests .device/lib .device/libz
+exclude=$(git rev-parse --git-path info/exclude)  # a worktree's .git is a file
+grep -qx '/.device/' "$exclude" 2>/dev/null || echo '/.device/' >>"$exclude"
 du -sh .device

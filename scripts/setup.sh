@@ -15,6 +15,10 @@ packages=(
   # Hardening (issue 20): libFuzzer (clang and its runtime, scripts/fuzz.sh), valgrind
   # (scripts/valgrind_databases.sh), PIL for regenerating fuzz seeds (tests/fuzz/make_seeds.py).
   clang libclang-rt-14-dev valgrind python3-pil
+  # Real DEMs (GDAL reads GeoTIFF, .hgt, .asc, .vrt; the build requires it; its tools make the
+  # tests' GeoTIFFs), and the clients the export tests open files with: Blender's glTF importer
+  # (headless) and Chromium for the CesiumJS view of a baked world (scripts/view_world.sh).
+  libgdal-dev gdal-bin blender chromium
 )
 # The glTF validator runs on Node.js; machines that already have node/npm (e.g. from NodeSource)
 # keep theirs, since Debian's npm package conflicts with it.

@@ -31,15 +31,7 @@ namespace {
 std::string repoDir() { return test::dataDir() + "/.."; }
 
 // A project over the shipped exemplars, using the tests' shared database.
-std::string writeProject(const std::string& dir) {
-    test::defaultDatabase();
-    const nlohmann::json project = {{"format", "terrasynth-project"}, {"version", 1},
-                                    {"database", test::defaultDatabasePath()}, {"size", {1024, 1024}},
-                                    {"synthesis", {{"seed", 3}}}};
-    const std::string path = dir + "/world.tsyn";
-    std::ofstream(path) << project.dump(1);
-    return path;
-}
+std::string writeProject(const std::string& dir) { return test::defaultDatabaseProject(dir, 3); }
 
 test::CliRun bake(const std::string& args) { return test::runTerrasynth("bake " + args + " --progress lines"); }
 

@@ -25,6 +25,7 @@ GltfExportOptions regionOptions(int w, int h, int tile, int lods) {
     o.region = {100, 150, w, h};
     o.tile_size = tile;
     o.lods = lods;
+    o.lod_layout = LodLayout::MsftLod;  // the tests below look at the MSFT_lod chain in one file
     o.threads = 2;
     return o;
 }
@@ -89,6 +90,33 @@ size_t fileSize(const std::string& path) {
 }
 
 }  // namespace
+
+TEST(ExportGltf, DefaultLodLayoutWritesOneWholeTerrainPerFile) {
+    const std::string dir = test::scratchDir("export_lod_files");
+    GltfExportOptions options = regionOptions(161, 97, 64, 3);
+    options.lod_layout = GltfExportOptions().lod_layout;  // the default
+    ASSERT_EQ(options.lod_layout, LodLayout::Files);
+    auto stats = exportGltf(dir + "/alaska.glb", heightSourceFromField(alaska()), options);
+    ASSERT_TRUE(stats) << stats.message();
+    ASSERT_EQ(stats->files, (std::vector<std::string>{dir + "/alaska.glb", dir + "/alaska_lod1.glb", dir + "/alaska_lod2.glb"}));
+    size_t bytes = 0;
+    for (int lod = 0; lod < 3; ++lod) {
+        const tinygltf::Model m = load(stats->files[lod]);
+        bytes += fileSize(stats->files[lod]);
+        // The scene's root and its six tiles are every node: nothing for an importer to add.
+        EXPECT_EQ(m.nodes.size(), 7u);
+        EXPECT_EQ(m.nodes[m.scenes[0].nodes[0]].children.size(), 6u);
+        EXPECT_TRUE(m.extensionsUsed.empty());
+        EXPECT_EQ(m.nodes[0].extras.Get("lod").GetNumberAsInt(), lod);
+        size_t vertices = 0;
+        for (const tinygltf::Mesh& mesh : m.meshes)
+            for (const tinygltf::Primitive& p : mesh.primitives) vertices += m.accessors[p.attributes.at("POSITION")].count;
+        EXPECT_EQ(vertices, stats->lods[lod].vertices) << "LOD " << lod;
+    }
+    EXPECT_EQ(stats->file_bytes, bytes);
+    EXPECT_EQ(gltfLodPath("a/b.GLTF", 2), "a/b_lod2.GLTF");
+    EXPECT_EQ(gltfLodPath("a/b.glb", 0), "a/b.glb");
+}
 
 TEST(ExportGltf, WritesTilesWithLodChainYUpAndTrueHeights) {
     const std::string path = test::scratchDir("export_basic") + "/alaska.glb";

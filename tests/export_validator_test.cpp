@@ -52,12 +52,28 @@ GltfExportOptions base(int w, int h, int tile, int lods) {
     o.region = {37, 51, w, h};
     o.tile_size = tile;
     o.lods = lods;
+    o.lod_layout = LodLayout::MsftLod;  // every LOD in the one file validated
     return o;
 }
 
 }  // namespace
 
 TEST_F(ExportValidator, PlainGlbWithLods) { exportAndValidate("plain.glb", base(300, 200, 128, 3), "orom_alaska"); }
+
+TEST_F(ExportValidator, LodFiles) {
+    const std::string dir = test::scratchDir("validator_lod_files");
+    static const Heightfield field = test::loadExemplarField("orom_alaska");
+    GltfExportOptions o = base(300, 200, 128, 3);
+    o.lod_layout = LodLayout::Files;
+    auto stats = exportGltf(dir + "/files.glb", heightSourceFromField(field), o);
+    ASSERT_TRUE(stats) << stats.message();
+    ASSERT_EQ(stats->files.size(), 3u);
+    for (const std::string& file : stats->files) {
+        std::string output;
+        EXPECT_EQ(validate(file, &output), 0) << output;
+        EXPECT_NE(output.find(" 0 errors"), std::string::npos) << output;
+    }
+}
 
 TEST_F(ExportValidator, LargeTilesWith32BitIndices) {
     exportAndValidate("wide.glb", base(400, 300, 300, 2), "orom_rockies");

@@ -13,6 +13,8 @@
 
 #include <cstdlib>
 
+#include <nlohmann/json.hpp>
+
 #include "terrasynth/heightfield_io.h"
 
 namespace terrasynth::test {
@@ -122,6 +124,16 @@ std::vector<std::string> filesUnder(const std::string& dir) {
 
 namespace terrasynth::test {
 std::string defaultDatabasePath() { return tmpPath("default.tsdb"); }
+
+std::string defaultDatabaseProject(const std::string& dir, int seed) {
+    defaultDatabase();
+    const nlohmann::json project = {{"format", "terrasynth-project"}, {"version", 1},
+                                    {"database", defaultDatabasePath()}, {"size", {1024, 1024}},
+                                    {"synthesis", {{"seed", seed}}}};
+    const std::string path = dir + "/world.tsyn";
+    std::ofstream(path) << project.dump(1);
+    return path;
+}
 
 namespace {
 std::shared_ptr<const ExemplarDatabase> cachedDatabase(const std::string& inputs, const std::string& cache) {

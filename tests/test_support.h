@@ -67,6 +67,9 @@ namespace terrasynth::test {
 std::shared_ptr<const ExemplarDatabase> defaultDatabase();
 // Where defaultDatabase() keeps its cache file (valid once defaultDatabase() has been called).
 std::string defaultDatabasePath();
+// Writes <dir>/world.tsyn: a 1024x1024 project over defaultDatabase() with synthesis seed `seed`;
+// returns its path.
+std::string defaultDatabaseProject(const std::string& dir, int seed);
 // The database of all shared exemplars (../shared/exemplars), built once and cached the same way
 // (<build>/test_tmp/shared.tsdb).
 std::shared_ptr<const ExemplarDatabase> sharedDatabase();

@@ -9,9 +9,13 @@
 //               height offset h changes mode 0 only (the a = (1 0 0 0)^T of eq. 4-5).     8 bytes
 //   similar     C^i_2, the most similar neighbourhood found by PatchMatch, as an atlas pixel
 //               index; at least kSimilarSeparation pixels from p (or in another exemplar), never
-//               within kInteriorMargin of an exemplar edge. C^i_1(p) = p itself, as in
-//               Lefebvre & Hoppe 2005, so it is not stored.                           4 bytes
-//   type        T^i, terrain type (majority of the 2^i x 2^i block of T^0); kNoType in gutters 1 byte
+//               within kInteriorMargin of an exemplar edge or of a NoData void. C^i_1(p) = p
+//               itself, as in Lefebvre & Hoppe 2005, so it is not stored.             4 bytes
+//   type        T^i, terrain type (majority of the 2^i x 2^i block of T^0); kNoType where there
+//               is nothing to copy: in gutters, and on an exemplar's NoData voids and the
+//               kInteriorMargin pixels around them (at coarser levels, wherever the pyramid
+//               filter read a void). Synthesis never copies a kNoType pixel: it is no
+//               match, no identity candidate and no type seed.                        1 byte
 //   exemplar    exemplar index, kNoExemplar in the padding                              1 byte
 //   closed      1 where the pixel lies in a closed depression of its own exemplar at this level
 //               (Priority-Flood raises it), so drainage keeps real basins               1 byte
@@ -91,6 +95,9 @@ struct DatabaseBuildOptions {
     int patchmatch_iterations = 6;
     // Called from the building thread with a stage name and progress in [0,1].
     std::function<void(const std::string& stage, double progress)> progress;
+    // Called from the building thread for each exemplar with NoData voids (Exemplar::nodata), with
+    // the share of its pixels that are voids, in (0, 1).
+    std::function<void(const ExemplarInfo& exemplar, double void_share)> on_voids;
 };
 
 // Reads every input (files, or directories expanded with listExemplarFiles), resamples to a common

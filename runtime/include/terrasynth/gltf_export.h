@@ -3,10 +3,10 @@
 //
 // glTF frame: the region's north-west corner is the origin, X east, Y up, Z south, metres (the
 // runtime's x east / y north / z up turned into glTF's Y-up, a proper rotation, so triangles keep
-// their counter-clockwise front faces). One node per tile under a root node; each tile node carries
-// its finest LOD and, with several LODs, the MSFT_lod extension naming one node per coarser LOD
-// (MSFT_screencoverage in its extras). Every file has a single buffer (the GLB BIN chunk, or
-// <stem>.bin beside a .gltf).
+// their counter-clockwise front faces). One node per tile under a root node. With several LODs
+// (LodLayout), either each LOD is a file of its own, or each tile node carries its finest LOD and
+// the MSFT_lod extension names one node per coarser LOD (MSFT_screencoverage in its extras). Every
+// file has a single buffer (the GLB BIN chunk, or <stem>.bin beside a .gltf).
 //
 // Threading: every function here may be called from any thread; exportGltf itself meshes tiles on
 // `threads` worker threads and calls the sources from them concurrently (so sources must be
@@ -45,6 +45,18 @@ enum class LodMethod {
     Simplify,
 };
 
+// Where the coarser levels of detail go when there are several.
+enum class LodLayout {
+    // One file per LOD, each a whole terrain: `path` holds LOD 0, gltfLodPath(path, k) LOD k. What
+    // tools that import every node (Blender 3.4) and engines that take LODs as separate meshes
+    // (Unreal's LOD import, Unity's LODGroup) want. The default.
+    Files,
+    // One file: each tile node holds LOD 0 and names its coarser nodes through MSFT_lod. Those nodes
+    // are outside the scene, so clients that ignore the extension draw LOD 0 only (three.js), but
+    // importers that read every node (Blender 3.4) draw all LODs at once.
+    MsftLod,
+};
+
 struct GltfExportOptions {
     // The samples to export (global pixel grid at `level`): a region of W x H samples becomes
     // (W-1) x (H-1) quads. Width and height >= 2.
@@ -55,6 +67,7 @@ struct GltfExportOptions {
     // Levels of detail per tile, 1..8 (LOD k has about 4^-k of the triangles).
     int lods = 1;
     LodMethod lod_method = LodMethod::StitchedGrid;
+    LodLayout lod_layout = LodLayout::Files;
     // KHR_mesh_quantization (declared in extensionsRequired): positions as 16-bit integers on one
     // uniform grid shared by all tiles (so shared edges stay bit-identical), normals as normalized
     // 8-bit, uvs as normalized 16-bit, and every primitive kept under 65536 vertices so indices are
@@ -82,16 +95,21 @@ struct GltfExportStats {
     std::vector<GltfLodStats> lods;      // per LOD, summed over tiles
     size_t primitives = 0;
     size_t json_bytes = 0, binary_bytes = 0;
-    size_t file_bytes = 0;               // everything written (GLB, or .gltf + .bin)
+    size_t file_bytes = 0;               // everything written (GLB, or .gltf + .bin), all LOD files
+    std::vector<std::string> files;      // the glTF files written (one per LOD with LodLayout::Files)
     double quantum_m = 0.0;              // position quantisation step (quantized output), else 0
 };
 
 // Whether `path` names a glTF file: it ends in .glb or .gltf, in any letter case.
 bool isGltfPath(const std::string& path);
+// The file of LOD `lod` with LodLayout::Files: `path` itself for LOD 0, "<stem>_lod<k><.ext>" beside
+// it for LOD k > 0 (terrain.glb -> terrain_lod1.glb).
+std::string gltfLodPath(const std::string& path, int lod);
 
-// Writes `path` (.glb binary, or .gltf JSON plus <stem>.bin beside it) from the heights `source`
-// gives for options.region. Files are written to temporaries and renamed into place. Errors: the
-// source's error (with the window), bad options (message names the option), unwritable paths.
+// Writes `path` (.glb binary, or .gltf JSON plus <stem>.bin beside it; with LodLayout::Files and
+// several LODs also the gltfLodPath files) from the heights `source` gives for options.region.
+// Files are written to temporaries and renamed into place. Errors: the source's error (with the
+// window), bad options (message names the option), unwritable paths.
 Result<GltfExportStats> exportGltf(const std::string& path, const HeightSource& source,
                                    const GltfExportOptions& options);
 // The same, staged into `transaction` (.bin first, the .gltf that names it last) to be committed
@@ -122,15 +140,19 @@ struct TypeMaskOptions {
 // [A-Za-z0-9_-]), 255 where the pixel's type is that type. `types` is width*height type ids (see
 // typesFromSources); pixels of unknown type (255) are 0 in every mask. Returns the paths written, in
 // type order; types absent from the map still get an (all-zero) mask so splat channels are stable.
-// The path writeTypeMasks writes the mask of type `index` to.
-std::string typeMaskPath(const std::string& prefix, const std::vector<std::string>& type_names, size_t index);
+// The path writeTypeMasks writes the mask of type `index` to, with `suffix` before ".png".
+std::string typeMaskPath(const std::string& prefix, const std::vector<std::string>& type_names, size_t index,
+                         const std::string& suffix = "");
 Result<std::vector<std::string>> writeTypeMasks(const std::string& prefix, int width, int height,
                                                 const std::vector<uint8_t>& types,
                                                 const std::vector<std::string>& type_names,
                                                 const TypeMaskOptions& options = {});
+// The same, staged; `name_suffix` goes before each mask's ".png" (a tile's "_x0_y0", so that engines
+// see a tile set).
 Result<std::vector<std::string>> stageTypeMasks(FileTransaction& transaction, const std::string& prefix, int width,
                                                 int height, const std::vector<uint8_t>& types,
                                                 const std::vector<std::string>& type_names,
-                                                const TypeMaskOptions& options = {});
+                                                const TypeMaskOptions& options = {},
+                                                const std::string& name_suffix = "");
 
 }  // namespace terrasynth

@@ -5,7 +5,10 @@
 //    height_m = height_min_m + value/65535 * (height_max_m - height_min_m); row 0 is north.
 //  - plain 16-bit grayscale PNG without sidecar: the caller supplies spacing and vertical scale.
 //  - raw little-endian float32 (.f32 or .raw) + JSON sidecar with width, height, meters_per_pixel.
-//  - GeoTIFF (.tif/.tiff) when built with GDAL; OpenEXR (.exr, channel Y or R) when built with OpenEXR.
+//  - any raster GDAL reads (GeoTIFF, SRTM .hgt, Esri .asc, .vrt, ...): band 1, spacing in metres from
+//    its CRS (projected or local: linear unit; geographic: metres at the centre latitude), heights in
+//    metres from the band's unit (metres, feet, ...), scale and offset, NoData voids as `nodata`.
+//    A JSON sidecar beside it with meters_per_pixel wins over the CRS.
 // Every reader validates the data (size, finite heights, spacing) and names the file in its error.
 // Every writer writes to temporary files in the same folder and renames them into place together
 // (file_transaction.h), so an interrupted or failed write never destroys or mismatches existing files.
@@ -37,6 +40,11 @@ struct Exemplar {
     // See docs/formats.md: a sidecar key "type_mask" naming an 8-bit PNG.
     std::vector<uint8_t> type_mask;
     std::vector<std::string> type_mask_names;  // names of the mask's values, index = value
+    // width*height, 1 where the file holds no height (NoData, a masked or non-finite sample), 0
+    // elsewhere; empty when the file has no voids. `field` holds an interpolated fill there (finite,
+    // between the heights around the void) only so that filters see plausible numbers: the database
+    // builder never copies from a void (docs/formats.md).
+    std::vector<uint8_t> nodata;
 };
 
 // How to read a plain 16-bit PNG that has no sidecar.
@@ -50,7 +58,8 @@ struct PlainPngScale {
 // otherwise an error explains that a sidecar or a vertical scale is required.
 Result<Exemplar> readExemplar(const std::string& path, const PlainPngScale* plain = nullptr);
 
-// Lists the exemplar files of a directory (PNG with sidecar, .f32/.raw with sidecar, .tif, .exr),
+// Lists the exemplar files of a directory (PNG with sidecar, .f32/.raw with sidecar, .tif/.tiff,
+// .hgt, .asc, .vrt),
 // sorted by name so database builds are deterministic.
 Result<std::vector<std::string>> listExemplarFiles(const std::string& directory);
 
@@ -78,7 +87,6 @@ Status writeHeightfield(const std::string& path, const Heightfield& field);
 // spending time on what is to be written).
 Status checkHeightfieldPath(const std::string& path);
 bool openExrAvailable();
-bool gdalAvailable();
 
 // 8-bit RGB hillshade (sun azimuth 315 deg, altitude 45 deg) with a soft hypsometric tint, for
 // looking at results. Slopes use the field's true spacing.

@@ -1,4 +1,5 @@
-// Exemplar readers: 16-bit PNG (+ sidecar or a given scale), raw float32 + sidecar, GeoTIFF via GDAL.
+// Exemplar readers: 16-bit PNG (+ sidecar or a given scale), raw float32 + sidecar, and every other
+// raster through GDAL (core/gdal_dem.h).
 #include <dirent.h>
 #include <unistd.h>
 
@@ -8,19 +9,19 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/gdal_dem.h"
 #include "core/sidecar.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/limits.h"
 
-#ifdef TERRASYNTH_HAVE_GDAL
-#include <gdal.h>
-#endif
 
 namespace terrasynth {
 namespace {
 
 using detail::lowerExtension;
 using detail::readJsonFile;
+using detail::readProvenance;
+using detail::readTypeMask;
 using detail::requireNumber;
 using detail::sidecarPathFor;
 
@@ -39,34 +40,6 @@ Result<int> requireSide(const nlohmann::json& j, const char* key, const std::str
         return Status::error(file + ": field \"" + key + "\" must be a whole number 1.." +
                              std::to_string(limits::kMaxImageSide));
     return static_cast<int>(it->get<int64_t>());
-}
-
-void readProvenance(const nlohmann::json& j, ExemplarInfo* info) {
-    auto text = [&](const char* key) {
-        auto it = j.find(key);
-        return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
-    };
-    info->terrain_class = text("terrain_class");
-    info->source = text("source");
-    info->license = text("license");
-}
-
-Status readTypeMask(const nlohmann::json& j, const std::string& sidecar, Exemplar* exemplar) {
-    auto it = j.find("type_mask");
-    if (it == j.end()) return Status::ok();
-    if (!it->is_string()) return Status::error(sidecar + ": field \"type_mask\" must be a file name");
-    const std::string mask_path = detail::resolveRelative(detail::folderOf(sidecar), it->get<std::string>());
-    auto mask = readPng8(mask_path);
-    if (!mask) return mask.status();
-    if (mask->width != exemplar->field.width || mask->height != exemplar->field.height || mask->channels != 1)
-        return Status::error(mask_path + ": type mask must be 8-bit gray of the exemplar's size");
-    exemplar->type_mask = std::move(mask->samples);
-    auto names = j.find("type_names");
-    if (names != j.end() && names->is_array())
-        for (const auto& n : *names) exemplar->type_mask_names.push_back(n.is_string() ? n.get<std::string>() : "");
-    for (uint8_t v : exemplar->type_mask)
-        if (v == 255) return Status::error(mask_path + ": value 255 is reserved (use 0..254)");
-    return Status::ok();
 }
 
 Result<Exemplar> readPngExemplar(const std::string& path, const PlainPngScale* plain) {
@@ -160,57 +133,20 @@ Result<Exemplar> readRawF32Exemplar(const std::string& path) {
     return exemplar;
 }
 
-#ifdef TERRASYNTH_HAVE_GDAL
-Result<Exemplar> readGdalExemplar(const std::string& path) {
-    GDALAllRegister();
-    GDALDatasetH dataset = GDALOpen(path.c_str(), GA_ReadOnly);
-    if (!dataset) return Status::error(path + ": GDAL cannot open this file");
-    Exemplar exemplar;
-    exemplar.info.name = detail::fileStem(path);
-    exemplar.info.path = path;
-    Heightfield& field = exemplar.field;
-    field.width = GDALGetRasterXSize(dataset);
-    field.height = GDALGetRasterYSize(dataset);
-    double transform[6];
-    if (GDALGetGeoTransform(dataset, transform) != CE_None) {
-        GDALClose(dataset);
-        return Status::error(path + ": no geotransform, cannot tell the spacing");
-    }
-    field.meters_per_pixel_x = std::fabs(transform[1]);
-    field.meters_per_pixel_y = std::fabs(transform[5]);
-    field.heights.resize(static_cast<size_t>(field.width) * field.height);
-    GDALRasterBandH band = GDALGetRasterBand(dataset, 1);
-    const CPLErr err = GDALRasterIO(band, GF_Read, 0, 0, field.width, field.height, field.heights.data(),
-                                    field.width, field.height, GDT_Float32, 0, 0);
-    GDALClose(dataset);
-    if (err != CE_None) return Status::error(path + ": GDAL read failed");
-    return exemplar;
-}
-#endif
 
 }  // namespace
-
-bool gdalAvailable() {
-#ifdef TERRASYNTH_HAVE_GDAL
-    return true;
-#else
-    return false;
-#endif
-}
 
 Result<Exemplar> readExemplar(const std::string& path, const PlainPngScale* plain) {
     const std::string ext = lowerExtension(path);
     Result<Exemplar> result = Status::error(path + ": unsupported exemplar format \"" + ext +
-                                            "\" (use .png with sidecar, .f32/.raw with sidecar" +
-                                            (gdalAvailable() ? ", .tif" : "") + ")");
+                                            "\" (use .png or .f32/.raw with a JSON sidecar, or a raster GDAL reads: .tif, "
+                                            ".hgt, .asc, .vrt, ...)");
     if (ext == ".png") {
         result = readPngExemplar(path, plain);
     } else if (ext == ".f32" || ext == ".raw") {
         result = readRawF32Exemplar(path);
-#ifdef TERRASYNTH_HAVE_GDAL
-    } else if (ext == ".tif" || ext == ".tiff") {
-        result = readGdalExemplar(path);
-#endif
+    } else if (detail::isGdalDemExtension(ext) || (detail::pathExists(path) && detail::gdalRecognisesRaster(path))) {
+        result = detail::readGdalExemplar(path);  // past the usual DEM formats, any raster GDAL recognises
     }
     if (!result) return result;
     Status valid = validateHeightfield(result->field);
@@ -228,13 +164,12 @@ Result<std::vector<std::string>> listExemplarFiles(const std::string& directory)
         const std::string ext = lowerExtension(name);
         const std::string full = prefix + name;
         const bool has_sidecar = ::access(sidecarPathFor(full).c_str(), R_OK) == 0;
-        if (((ext == ".png" || ext == ".f32" || ext == ".raw") && has_sidecar) ||
-            (gdalAvailable() && (ext == ".tif" || ext == ".tiff")))
+        if (((ext == ".png" || ext == ".f32" || ext == ".raw") && has_sidecar) || detail::isGdalDemExtension(ext))
             files.push_back(full);
     }
     ::closedir(dir);
     std::sort(files.begin(), files.end());
-    if (files.empty()) return Status::error(directory + ": no exemplar files (PNG/F32 with JSON sidecar)");
+    if (files.empty()) return Status::error(directory + ": no exemplar files (PNG/F32 with JSON sidecar, or .tif/.hgt/.asc/.vrt)");
     return files;
 }
 

@@ -42,4 +42,32 @@ Status readSpacing(const nlohmann::json& j, const std::string& file, double* x, 
     return Status::ok();
 }
 
+void readProvenance(const nlohmann::json& j, ExemplarInfo* info) {
+    auto text = [&](const char* key) {
+        auto it = j.find(key);
+        return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
+    };
+    info->terrain_class = text("terrain_class");
+    info->source = text("source");
+    info->license = text("license");
+}
+
+Status readTypeMask(const nlohmann::json& j, const std::string& sidecar, Exemplar* exemplar) {
+    auto it = j.find("type_mask");
+    if (it == j.end()) return Status::ok();
+    if (!it->is_string()) return Status::error(sidecar + ": field \"type_mask\" must be a file name");
+    const std::string mask_path = detail::resolveRelative(detail::folderOf(sidecar), it->get<std::string>());
+    auto mask = readPng8(mask_path);
+    if (!mask) return mask.status();
+    if (mask->width != exemplar->field.width || mask->height != exemplar->field.height || mask->channels != 1)
+        return Status::error(mask_path + ": type mask must be 8-bit gray of the exemplar's size");
+    exemplar->type_mask = std::move(mask->samples);
+    auto names = j.find("type_names");
+    if (names != j.end() && names->is_array())
+        for (const auto& n : *names) exemplar->type_mask_names.push_back(n.is_string() ? n.get<std::string>() : "");
+    for (uint8_t v : exemplar->type_mask)
+        if (v == 255) return Status::error(mask_path + ": value 255 is reserved (use 0..254)");
+    return Status::ok();
+}
+
 }  // namespace terrasynth::detail

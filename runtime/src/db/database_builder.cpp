@@ -1,7 +1,8 @@
 // Builds the exemplar database (Gain et al. 2015 s4; type pyramid s5.2): read and resample the
 // exemplars, build their Gaussian pyramids, fit one appearance-space PCA per level, pack each
 // level into an atlas, find similar neighbourhoods with PatchMatch, derive the type pyramid, and
-// mark each exemplar's own closed depressions (for drainage, issue 17).
+// mark each exemplar's own closed depressions (for drainage, issue 17). NoData voids (and their
+// kInteriorMargin) become kNoType pixels that nothing is copied from (db/voids.cpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -83,23 +84,37 @@ std::vector<uint8_t> typeLevel(const std::vector<uint8_t>& base, int base_w, int
     return out;
 }
 
+// A void mask, when there is one, has one byte per height.
+Status checkVoidMask(const Exemplar& ex) {
+    if (!ex.nodata.empty() && ex.nodata.size() != ex.field.size())
+        return Status::error(ex.info.path + ": the NoData mask has " + std::to_string(ex.nodata.size()) + " values for " +
+                             std::to_string(ex.field.size()) + " heights");
+    return Status::ok();
+}
+
 uint16_t quantise(float value, float offset, float scale) {
     const float q = std::round((value - offset) / scale);
     return static_cast<uint16_t>(std::clamp(q, 0.0f, 65535.0f));
 }
 
-// DatabaseLevel::closed of one exemplar: the pixels Priority-Flood raises (its edge drains out).
-void markClosedDepressions(const Heightfield& field, const AtlasRect& r, DatabaseLevel& out) {
+// DatabaseLevel::closed of one exemplar: the pixels Priority-Flood raises (its edge drains out);
+// never a pixel that synthesis cannot copy (`blocked`: a void's fill says nothing about basins).
+void markClosedDepressions(const Heightfield& field, const std::vector<uint8_t>& blocked, const AtlasRect& r,
+                           DatabaseLevel& out) {
     const Heightfield filled = fillDepressions(field, false);
     for (int y = 0; y < r.height; ++y)
-        for (int x = 0; x < r.width; ++x)
-            out.closed[static_cast<size_t>(r.y + y) * out.width + r.x + x] = filled.at(x, y) > field.at(x, y) ? 1 : 0;
+        for (int x = 0; x < r.width; ++x) {
+            const size_t i = static_cast<size_t>(y) * r.width + x;
+            const bool raised = filled.heights[i] > field.heights[i] && (blocked.empty() || !blocked[i]);
+            out.closed[static_cast<size_t>(r.y + y) * out.width + r.x + x] = raised ? 1 : 0;
+        }
 }
 
 struct LevelInputs {
     std::vector<Heightfield> fields;                 // per exemplar (empty when too small)
     std::vector<db::NeighbourhoodFeatures> features;
     std::vector<std::vector<uint8_t>> types;
+    std::vector<std::vector<uint8_t>> blocked;       // voids and their margin (db::voidMargins), or empty
 };
 
 // `coarser` is level + 1 when already built: its matches, carried down, start PatchMatch here.
@@ -125,6 +140,10 @@ void buildLevel(int level, LevelInputs& in, const DatabaseBuildOptions& options,
     out.closed.assign(n, 0);
     std::vector<float> match_features(n * kMatchModes, 0.0f);
     std::vector<uint8_t> eligible(n, 0);
+    // Which exemplar each pixel is for PatchMatch: its own inside its rectangle, kNoExemplar in the
+    // gutters (which keep the exemplar id in `out.exemplar`, so coordinates jittered slightly outside
+    // stay attributable). Void pixels are matched (their C_2 leads out of the void) but never matches.
+    std::vector<uint8_t> match_exemplar(n, kNoExemplar);
 
     // Quantisation ranges: mode 0 spans all mean heights; modes 1..3 are symmetric.
     float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
@@ -161,19 +180,16 @@ void buildLevel(int level, LevelInputs& in, const DatabaseBuildOptions& options,
                                                          out.appearance_offset[m], out.appearance_scale[m]);
                 const bool inside = x == cx && y == cy;
                 if (!inside) continue;
-                out.type[a] = in.types[e][i];
+                const bool blocked = !in.blocked[e].empty() && in.blocked[e][i];
+                out.type[a] = blocked ? kNoType : in.types[e][i];
+                match_exemplar[a] = static_cast<uint8_t>(e);
                 std::copy_n(&projections[e][i * kMatchModes], kMatchModes, &match_features[a * kMatchModes]);
-                eligible[a] = x >= kInteriorMargin && y >= kInteriorMargin && x < r.width - kInteriorMargin &&
+                eligible[a] = !blocked && x >= kInteriorMargin && y >= kInteriorMargin && x < r.width - kInteriorMargin &&
                               y < r.height - kInteriorMargin;
             }
     }
     for (size_t e = 0; e < count; ++e)
-        if (!in.features[e].mean.empty()) markClosedDepressions(in.fields[e], out.rects[e], out);
-    // Gutter pixels keep the exemplar id (coordinates jittered slightly outside stay attributable)
-    // but never take part in matching: mark them kNoExemplar for PatchMatch only.
-    std::vector<uint8_t> match_exemplar(out.exemplar);
-    for (size_t a = 0; a < n; ++a)
-        if (out.type[a] == kNoType) match_exemplar[a] = kNoExemplar;
+        if (!in.features[e].mean.empty()) markClosedDepressions(in.fields[e], in.blocked[e], out.rects[e], out);
     db::PatchMatchInput pm{out.width, out.height, kMatchModes, match_features.data(), match_exemplar.data(),
                            eligible.data(), 0x51u + static_cast<uint32_t>(level)};
     std::vector<uint32_t> prior;
@@ -251,9 +267,14 @@ Result<std::shared_ptr<ExemplarDatabase>> buildFromExemplars(std::vector<Exempla
     }
 
     report(options, "resampling", 0.0);
+    std::vector<std::vector<uint8_t>> base_voids(exemplars.size());
     for (size_t e = 0; e < exemplars.size(); ++e) {
         Exemplar& ex = exemplars[e];
         const int old_w = ex.field.width, old_h = ex.field.height;
+        if (Status s = checkVoidMask(ex); !s) return s;
+        if (!ex.nodata.empty() && options.on_voids)
+            options.on_voids(ex.info, static_cast<double>(std::count(ex.nodata.begin(), ex.nodata.end(), 1)) / ex.nodata.size());
+        base_voids[e] = db::resampleVoids(ex.nodata, ex.field, spacing);
         ex.field = resampleToSpacing(ex.field, spacing);
         if (!ex.type_mask.empty() && (ex.field.width != old_w || ex.field.height != old_h)) {
             std::vector<uint8_t> resized(ex.field.size());  // nearest neighbour keeps labels crisp
@@ -280,11 +301,36 @@ Result<std::shared_ptr<ExemplarDatabase>> buildFromExemplars(std::vector<Exempla
         return Status::error("at most " + std::to_string(kMaxTypes) + " terrain types");
 
     std::vector<std::vector<Heightfield>> pyramids;
-    for (const Exemplar& ex : exemplars) pyramids.push_back(db::buildGaussianPyramid(ex.field, options.levels));
+    std::vector<std::vector<std::vector<uint8_t>>> blocked(exemplars.size());  // per exemplar and level
+    for (size_t e = 0; e < exemplars.size(); ++e) {
+        pyramids.push_back(db::buildGaussianPyramid(exemplars[e].field, options.levels));
+        std::vector<uint8_t> voids = std::move(base_voids[e]);
+        for (size_t level = 0; level < pyramids[e].size(); ++level) {
+            const Heightfield& f = pyramids[e][level];
+            if (level > 0) {
+                const Heightfield& finer = pyramids[e][level - 1];
+                voids = db::coarserVoids(voids, finer.width, finer.height, f.width, f.height);
+            }
+            blocked[e].push_back(db::voidMargins(voids, f.width, f.height));
+        }
+    }
+    // An exemplar takes part in a level when it has interior pixels there that are not blocked by a
+    // void; voids only grow towards coarser levels, so it then takes part in every finer one too.
     auto present = [&](size_t e, int level) {
-        return level < static_cast<int>(pyramids[e].size()) && pyramids[e][level].width > 2 * kInteriorMargin &&
-               pyramids[e][level].height > 2 * kInteriorMargin;
+        if (level >= static_cast<int>(pyramids[e].size())) return false;
+        const Heightfield& f = pyramids[e][level];
+        if (f.width <= 2 * kInteriorMargin || f.height <= 2 * kInteriorMargin) return false;
+        const std::vector<uint8_t>& b = blocked[e][level];
+        if (b.empty()) return true;
+        for (int y = kInteriorMargin; y < f.height - kInteriorMargin; ++y)
+            for (int x = kInteriorMargin; x < f.width - kInteriorMargin; ++x)
+                if (!b[static_cast<size_t>(y) * f.width + x]) return true;
+        return false;
     };
+    for (size_t e = 0; e < exemplars.size(); ++e)
+        if (!present(e, 0))
+            return Status::error(exemplars[e].info.path + ": its NoData voids leave no pixel " + std::to_string(kInteriorMargin) +
+                                 " or more pixels from a void and the edge at " + detail::compactNumber(spacing) + " m/pixel");
     // The pyramid stops below the first level where every exemplar is too small.
     int level_count = 0;
     while (level_count <= options.levels) {
@@ -304,6 +350,7 @@ Result<std::shared_ptr<ExemplarDatabase>> buildFromExemplars(std::vector<Exempla
             in.types.push_back(present_here ? typeLevel(base_types[e], exemplars[e].field.width, exemplars[e].field.height,
                                                         level, pyramids[e][level].width, pyramids[e][level].height)
                                             : std::vector<uint8_t>());
+            in.blocked.push_back(present_here ? blocked[e][level] : std::vector<uint8_t>());
         }
         const DatabaseLevel* coarser = level + 1 < level_count ? &database->levels[level + 1] : nullptr;
         buildLevel(level, in, options, coarser, database->levels[level]);

@@ -116,9 +116,10 @@ std::string serialise(const ExemplarDatabase& db) {
 // nothing about who wrote it) cannot drive either backend out of bounds. The kernels only ever hold
 // coordinates inside an exemplar's interior (kInteriorMargin from its edges) and read one pixel
 // around them, so: every rectangle is empty or at least 5x5 and inside the atlas; the pixels inside
-// rectangle e say exemplar e and carry a known type; the PatchMatch match of such a pixel and every
-// seed coordinate lie in some exemplar's interior; an exemplar present at a level is present at
-// every finer one (upsampling maps its pixels there); appearance scales are finite and positive.
+// rectangle e say exemplar e and carry a known type or kNoType (a void); the PatchMatch match of
+// such a pixel and every seed coordinate lie in some exemplar's interior on a pixel of known type;
+// an exemplar present at a level is present at every finer one (upsampling maps its pixels there);
+// appearance scales are finite and positive.
 Status checkLevel(const ExemplarDatabase& db, size_t index) {
     const DatabaseLevel& l = db.levels[index];
     const std::string where = "level " + std::to_string(index) + ": ";
@@ -140,7 +141,7 @@ Status checkLevel(const ExemplarDatabase& db, size_t index) {
         const AtlasRect& r = l.rects[e];
         const int x = static_cast<int>(q % static_cast<uint32_t>(l.width)), y = static_cast<int>(q / static_cast<uint32_t>(l.width));
         return x >= r.x + kInteriorMargin && y >= r.y + kInteriorMargin && x < r.x + r.width - kInteriorMargin &&
-               y < r.y + r.height - kInteriorMargin;
+               y < r.y + r.height - kInteriorMargin && l.type[q] < db.type_names.size();
     };
     // Rectangles first (their bounds are what the pixel checks below rely on), then which pixels
     // name which exemplar, then what the pixels inside each rectangle hold.
@@ -166,7 +167,7 @@ Status checkLevel(const ExemplarDatabase& db, size_t index) {
         for (int y = r.y; y < r.y + r.height; ++y)
             for (int x = r.x; x < r.x + r.width; ++x) {
                 const size_t p = static_cast<size_t>(y) * l.width + x;
-                if (l.exemplar[p] != e || l.type[p] >= db.type_names.size())
+                if (l.exemplar[p] != e || (l.type[p] >= db.type_names.size() && l.type[p] != kNoType))
                     return Status::error(where + "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                                          ") inside exemplar " + std::to_string(e) + " names another exemplar or an unknown type");
                 if (!interior(l.similar[p]))

@@ -76,6 +76,20 @@ std::vector<uint32_t> upsampleMatches(const DatabaseLevel& coarse, const std::ve
 std::vector<uint32_t> bruteForceMatch(const PatchMatchInput& input);
 float featureDistance(const PatchMatchInput& input, uint32_t a, uint32_t b);
 
+// NoData voids through resampling and the pyramid (docs/formats.md, "Voids"). Masks are width*height
+// bytes, 1 = void; an empty mask means no voids.
+// The voids of `nodata` (at `original`'s size and spacing) once the exemplar is resampled to
+// `meters_per_pixel` (resampleToSpacing): a pixel is a void when more than a thousandth of its
+// resampled height comes from void samples.
+std::vector<uint8_t> resampleVoids(const std::vector<uint8_t>& nodata, const Heightfield& original,
+                                   double meters_per_pixel);
+// The voids of pyramid level i+1 (coarse_w x coarse_h) from level i's: a pixel whose [1 3 3 1]
+// filter reads any level-i void (its height then holds fill) is a void.
+std::vector<uint8_t> coarserVoids(const std::vector<uint8_t>& fine, int fine_w, int fine_h, int coarse_w, int coarse_h);
+// The voids grown by kInteriorMargin pixels (Chebyshev): what the database treats like the
+// exemplar's own edge, so no candidate's neighbourhood reads a void.
+std::vector<uint8_t> voidMargins(const std::vector<uint8_t>& voids, int width, int height);
+
 // Runs body(row_begin, row_end) over [0, rows) on `threads` threads (0 = hardware).
 void parallelRows(int rows, int threads, const std::function<void(int, int)>& body);
 

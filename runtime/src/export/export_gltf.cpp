@@ -105,13 +105,21 @@ public:
             if (!encoded) return encoded.status().withContext(path);
             png = std::move(*encoded);
         }
-        tinygltf::Model model;
-        BinaryLayout layout;
-        ModelInputs inputs{&o_, &frame, &packed, tiles_x_, tiles_y_, &png};
-        buildModel(inputs, model, layout);
-        stats.binary_bytes = layout.total_bytes;
-        if (Status s = stageGltfFiles(transaction, path, model, layout, &stats.json_bytes, &stats.file_bytes); !s)
-            return s;
+        // One model holding every LOD (MSFT_lod), or one per LOD file.
+        const bool lod_files = o_.lods > 1 && o_.lod_layout == LodLayout::Files;
+        for (int lod = 0; lod < (lod_files ? o_.lods : 1); ++lod) {
+            tinygltf::Model model;
+            BinaryLayout layout;
+            ModelInputs inputs{&o_, &frame, &packed, tiles_x_, tiles_y_, &png, lod_files ? lod : -1};
+            buildModel(inputs, model, layout);
+            const std::string file = lod_files ? gltfLodPath(path, lod) : path;
+            size_t json_bytes = 0, file_bytes = 0;
+            if (Status s = stageGltfFiles(transaction, file, model, layout, &json_bytes, &file_bytes); !s) return s;
+            stats.binary_bytes += layout.total_bytes;
+            stats.json_bytes += json_bytes;
+            stats.file_bytes += file_bytes;
+            stats.files.push_back(file);
+        }
         return stats;
     }
 
@@ -216,6 +224,12 @@ private:
 
 bool isGltfPath(const std::string& path) {
     return detail::hasExtension(path, ".glb") || detail::hasExtension(path, ".gltf");
+}
+
+std::string gltfLodPath(const std::string& path, int lod) {
+    if (lod <= 0) return path;
+    const std::string ext = detail::hasExtension(path, ".gltf") ? path.substr(path.size() - 5) : path.substr(path.size() - 4);
+    return path.substr(0, path.size() - ext.size()) + "_lod" + std::to_string(lod) + ext;
 }
 
 Result<GltfExportStats> stageGltf(FileTransaction& transaction, const std::string& path, const HeightSource& source,

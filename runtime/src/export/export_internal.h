@@ -88,6 +88,7 @@ struct ModelInputs {
     const std::vector<PackedTile>* tiles = nullptr;
     int tiles_x = 0, tiles_y = 0;
     const std::string* texture_png = nullptr;  // empty or null: no texture
+    int only_lod = -1;  // >= 0: every tile node holds this LOD alone, without MSFT_lod (LodLayout::Files)
 };
 
 // Fills `model` (nodes, meshes, accessors, bufferViews, material, extensions) and `layout`.

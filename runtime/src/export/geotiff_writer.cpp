@@ -8,7 +8,7 @@ namespace terrasynth::export_detail {
 
 namespace {
 
-enum : uint16_t { kShort = 3, kLong = 4, kDouble = 12 };
+enum : uint16_t { kAscii = 2, kShort = 3, kLong = 4, kDouble = 12 };
 
 struct Entry {
     uint16_t tag, type;
@@ -31,6 +31,9 @@ void append(std::string& out, T v) {
 
 }  // namespace
 
+// GeoTIFF ASCII parameters end each value with '|' (and the tag's data with NUL).
+constexpr char kCitation[] = "terrasynth local frame (x east, y north, metres)|";
+
 std::string encodeGeoTiff(const Heightfield& field, double origin_x_m, double origin_y_m) {
     const uint32_t w = static_cast<uint32_t>(field.width), h = static_cast<uint32_t>(field.height);
     const uint32_t image_bytes = w * h * 4;
@@ -50,9 +53,12 @@ std::string encodeGeoTiff(const Heightfield& field, double origin_x_m, double or
         entry<uint16_t>(339, kShort, {3}),                // SampleFormat: IEEE float
         entry<double>(33550, kDouble, {field.meters_per_pixel_x, field.meters_per_pixel_y, 0.0}),  // ModelPixelScale
         entry<double>(33922, kDouble, {0.0, 0.0, 0.0, origin_x_m, origin_y_m, 0.0}),             // ModelTiepoint
-        // GeoKeyDirectory: version 1.1.0, 3 keys: GTModelType = projected, GTRasterType = pixel-is-area,
-        // ProjLinearUnits = metre (EPSG 9001). No CRS is known for synthetic terrain.
-        entry<uint16_t>(34735, kShort, {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3076, 0, 1, 9001}),
+        // GeoKeyDirectory: version 1.1.0, 4 keys: GTModelType = projected, GTRasterType = pixel-is-area,
+        // GTCitation (in GeoAsciiParams), ProjLinearUnits = metre (EPSG 9001). No projection: synthetic
+        // terrain lies in a local metric frame, which GDAL reads as an engineering CRS in metres.
+        entry<uint16_t>(34735, kShort, {1, 1, 0, 4, 1024, 0, 1, 1, 1025, 0, 1, 1, 1026, 34737,
+                                        static_cast<uint16_t>(sizeof kCitation - 1), 0, 3076, 0, 1, 9001}),
+        entry<char>(34737, kAscii, std::vector<char>(kCitation, kCitation + sizeof kCitation)),  // GeoAsciiParams
     };
     std::string out;
     out.reserve(image_offset + image_bytes + 512);

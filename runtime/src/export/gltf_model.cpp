@@ -1,4 +1,5 @@
-// The tinygltf model of an export: one node per tile (MSFT_lod for coarser LODs), one buffer.
+// The tinygltf model of an export: one node per tile (MSFT_lod for coarser LODs, or one LOD per
+// model), one buffer.
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -128,7 +129,8 @@ void buildModel(const ModelInputs& in, tinygltf::Model& model, BinaryLayout& lay
         model.extensionsUsed.push_back("KHR_mesh_quantization");
         model.extensionsRequired.push_back("KHR_mesh_quantization");
     }
-    if (options.lods > 1) model.extensionsUsed.push_back("MSFT_lod");
+    const bool msft_lod = options.lods > 1 && in.only_lod < 0;
+    if (msft_lod) model.extensionsUsed.push_back("MSFT_lod");
 
     const int texture = in.texture_png && !in.texture_png->empty() ? builder.addTexture(*in.texture_png) : -1;
     const int material = builder.addMaterial(texture);
@@ -143,6 +145,7 @@ void buildModel(const ModelInputs& in, tinygltf::Model& model, BinaryLayout& lay
         tinygltf::Value(options.region.width), tinygltf::Value(options.region.height)});
     extras["level"] = tinygltf::Value(options.level);
     extras["tile_size"] = tinygltf::Value(options.tile_size);
+    if (in.only_lod >= 0) extras["lod"] = tinygltf::Value(in.only_lod);
     extras["frame"] = tinygltf::Value(std::string("origin at the region's north-west corner; X east, Y up, Z south; metres"));
     root.extras = tinygltf::Value(extras);
     model.nodes.push_back(root);
@@ -150,9 +153,9 @@ void buildModel(const ModelInputs& in, tinygltf::Model& model, BinaryLayout& lay
     char name[64];
     for (const PackedTile& tile : *in.tiles) {
         std::snprintf(name, sizeof name, "tile_%d_%d", tile.tx, tile.ty);
-        const int node = builder.addNode(name, builder.addMesh(tile.lods[0], name, material), tile);
+        const int node = builder.addNode(name, builder.addMesh(tile.lods[std::max(0, in.only_lod)], name, material), tile);
         model.nodes[0].children.push_back(node);
-        if (tile.lods.size() < 2) continue;
+        if (!msft_lod) continue;
         tinygltf::Value::Array ids;
         for (size_t k = 1; k < tile.lods.size(); ++k) {
             std::snprintf(name, sizeof name, "tile_%d_%d_lod%zu", tile.tx, tile.ty, k);

@@ -37,19 +37,20 @@ std::vector<float> boxBlur(const std::vector<float>& in, int w, int h, int r) {
 
 }  // namespace
 
-std::string typeMaskPath(const std::string& prefix, const std::vector<std::string>& type_names, size_t index) {
-    const std::string path = prefix + sanitise(type_names[index], index) + ".png";
+std::string typeMaskPath(const std::string& prefix, const std::vector<std::string>& type_names, size_t index,
+                         const std::string& suffix) {
+    const std::string path = prefix + sanitise(type_names[index], index) + suffix + ".png";
     // Two names that sanitise alike ("a b", "a_b") must not write one file twice.
     for (size_t earlier = 0; earlier < index; ++earlier)
-        if (prefix + sanitise(type_names[earlier], earlier) + ".png" == path)
-            return prefix + sanitise(type_names[index], index) + "_" + std::to_string(index) + ".png";
+        if (prefix + sanitise(type_names[earlier], earlier) + suffix + ".png" == path)
+            return prefix + sanitise(type_names[index], index) + "_" + std::to_string(index) + suffix + ".png";
     return path;
 }
 
 Result<std::vector<std::string>> stageTypeMasks(FileTransaction& transaction, const std::string& prefix, int width,
                                                 int height, const std::vector<uint8_t>& types,
                                                 const std::vector<std::string>& type_names,
-                                                const TypeMaskOptions& options) {
+                                                const TypeMaskOptions& options, const std::string& name_suffix) {
     if (width < 1 || height < 1 || types.size() != size_t(width) * height)
         return Status::error(prefix + ": type map size does not match " + std::to_string(width) + "x" + std::to_string(height));
     if (options.blur_radius < 0) return Status::error("blur_radius: must not be negative");
@@ -87,7 +88,7 @@ Result<std::vector<std::string>> stageTypeMasks(FileTransaction& transaction, co
     }
     std::vector<std::string> paths;
     for (size_t t = 0; t < count; ++t) {
-        const std::string path = typeMaskPath(prefix, type_names, t);
+        const std::string path = typeMaskPath(prefix, type_names, t, name_suffix);
         if (Status s = stagePng8(transaction, path, width, height, 1, masks[t]); !s) return s;
         paths.push_back(path);
     }

@@ -483,6 +483,14 @@ Status IncrementalTerrain::paste(const Paste& paste) {
                         ex = mirroredIntoInterior(lx, r.width), ey = mirroredIntoInterior(ly, r.height);
                         if (ex < 0 || ey < 0) continue;
                     }
+                    // NoData voids (and their margin) are never copied: refused at level 0, left to
+                    // the synthesized coarse terrain above.
+                    if (dl.type[static_cast<size_t>(r.y + ey) * dl.width + r.x + ex] == kNoType) {
+                        if (level > 0) continue;
+                        failed = Status::error("paste: source polygon reaches a NoData void of exemplar " +
+                                               db.exemplars[paste.exemplar].name);
+                        return;
+                    }
                     writes.push_back({static_cast<int>(level), pass, i,
                                       static_cast<uint32_t>((r.y + ey) * dl.width + r.x + ex), paste.height_offset_m});
                 } else {

@@ -70,7 +70,7 @@ uint32_t identityCandidate(const DatabaseLevel& db, uint32_t c) {
     const int x = static_cast<int>(c % static_cast<uint32_t>(db.width)), y = static_cast<int>(c / static_cast<uint32_t>(db.width));
     const bool interior = x >= r.x + kInteriorMargin && x <= r.x + r.width - 1 - kInteriorMargin &&
                           y >= r.y + kInteriorMargin && y <= r.y + r.height - 1 - kInteriorMargin;
-    return interior ? c : kNoIdentityCandidate;
+    return interior && db.type[c] != kNoType ? c : kNoIdentityCandidate;  // kNoType: a void or its margin
 }
 
 void takePrevious(const DatabaseLevel& db, const PassHistory& previous, size_t pixel, PixelState& out) {

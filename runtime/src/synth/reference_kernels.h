@@ -22,7 +22,8 @@ namespace terrasynth::synth {
 constexpr uint32_t kNoIdentityCandidate = 0xffffffffu;
 
 // C_1(c) (s4, Lefebvre & Hoppe 2005's identity candidate) of atlas pixel c: c itself when it lies
-// in its exemplar's interior (or in no exemplar), else kNoIdentityCandidate. The OpenCL backend
+// in its exemplar's interior and off its NoData voids (type not kNoType), or in no exemplar, else
+// kNoIdentityCandidate. The OpenCL backend
 // bakes it into its candidate table; the reference calls it per candidate.
 uint32_t identityCandidate(const DatabaseLevel& db, uint32_t c);
 
