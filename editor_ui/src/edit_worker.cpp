@@ -196,7 +196,7 @@ uint64_t EditWorker::editCount() const {
 }
 
 void EditWorker::threadMain() {
-    // At the frame loop's level, above the tile workers (WorkerPool::kWorkerNice). Threads created
+    // At the frame loop's level, above the plugin's tile workers (which run niced). Threads created
     // from here (the OpenCL runtime's, when the session opens) inherit it; Linux nice is per thread.
     // Below the frame loop (nice 5, before), a software rasterizer (llvmpipe) took the cores from
     // the synthesis: on the 2-core machine the point drag's p95 latency was 326-343 ms against
