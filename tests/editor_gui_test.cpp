@@ -431,6 +431,7 @@ move 640 360
 click
 settle
 expect-ok
+expect-selected-layer 0
 heights )" + dir + R"(/after.f32
 save )" + dir + R"(/saved.tsyn
 )");

@@ -149,12 +149,14 @@ void EditWorker::submit(EditRequest request) {
     wake_.notify_one();
 }
 
-std::vector<EditResult> EditWorker::takeResults() {
+std::vector<EditResult> EditWorker::takeResults(const std::function<void()>& before_done) {
     std::vector<EditResult> out;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         out.swap(results_);
     }
+    // Each result was pushed after its view was published (runOne), so view() is at least as new.
+    if (before_done) before_done();
     for (const EditResult& r : out)
         if (r.done) r.done(r);
     return out;

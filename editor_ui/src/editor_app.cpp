@@ -149,7 +149,7 @@ void EditorApp::frame() {
 }
 
 void EditorApp::onResults() {
-    for (const EditResult& r : worker_->takeResults()) {
+    for (const EditResult& r : worker_->takeResults([this] { view_ = worker_->view(); })) {
         latency_.noteResult(r);
         if (!r.status) {
             ++errors_since_check_;

@@ -79,6 +79,7 @@ public:
     const std::string& lastError() const override { return last_error_; }
     void clearErrors() override { errors_since_check_ = 0; }
     bool autosaveHoldsTheLastEdit() const override;
+    int selectedLayer() const override { return selection_.layer; }
     std::optional<ImVec4> itemRect(const std::string& id) const override;
     void setPhase(const std::string& name) override;
 

@@ -46,6 +46,7 @@ const std::map<std::string, Shape>& shapes() {
         {"wait-autosave", {0, 0, 0, ""}},
         {"expect-error", {1, 64, 0, "TEXT"}},
         {"expect-ok", {0, 0, 0, ""}},
+        {"expect-selected-layer", {1, 1, 1, "INDEX (-1: none)"}},
         {"phase", {1, 1, 0, "NAME"}},
         {"echo", {0, 1, 0, "TEXT"}},
         {"quit", {0, 0, 0, ""}},

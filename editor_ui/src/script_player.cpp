@@ -211,6 +211,14 @@ bool ScriptPlayer::run(const ScriptCommand& c) {
         probe_.clearErrors();
         return true;
     }
+    if (c.op == "expect-selected-layer") {
+        if (!probe_.idle()) return false;
+        probe_.collectResults();
+        const int want = static_cast<int>(c.numbers[0]);
+        if (probe_.selectedLayer() != want)
+            fail(c, "layer " + std::to_string(probe_.selectedLayer()) + " is selected, not " + std::to_string(want));
+        return true;
+    }
     if (c.op == "phase") {
         probe_.setPhase(c.args[0]);
         return true;

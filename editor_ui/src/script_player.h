@@ -30,6 +30,7 @@ public:
     virtual const std::string& lastError() const = 0;
     virtual void clearErrors() = 0;
     virtual bool autosaveHoldsTheLastEdit() const = 0;
+    virtual int selectedLayer() const = 0;  // the layer panel's selection, -1 when none
     // A panel item or a 3D handle drawn this frame: its rectangle (min x, min y, max x, max y).
     virtual std::optional<ImVec4> itemRect(const std::string& id) const = 0;
     // Labels the following frames in the --stats report.

@@ -140,8 +140,10 @@ public:
     void attachTerrain(osg::ref_ptr<plugin::TerrainNode> terrain);
     // Queues a request (Ready only; before that requests wait until the session is open).
     void submit(EditRequest request);
-    // Results finished since the last call, oldest first; their `done` callbacks have run.
-    std::vector<EditResult> takeResults();
+    // Results finished since the last call, oldest first; their `done` callbacks have run, after
+    // `before_done` (may be empty): the caller's chance to pick up view(), which already holds what
+    // those results did, so the callbacks see it (a new layer is in the view its callback selects).
+    std::vector<EditResult> takeResults(const std::function<void()>& before_done = {});
 
     std::shared_ptr<const SessionView> view() const;  // null until open
     std::shared_ptr<const OverlayMasks> masks() const;

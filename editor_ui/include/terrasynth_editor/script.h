@@ -29,6 +29,7 @@
 //   wait-autosave                    until the autosave holds the current edit
 //   expect-error TEXT                the last edit failed with a message containing TEXT
 //   expect-ok                        no edit failed since the start or the last expect-*
+//   expect-selected-layer INDEX      once idle, the layer panel selects layer INDEX (-1: none)
 //   phase NAME                       label the following frames in the --stats report
 //   echo TEXT                        print TEXT on stdout
 //   quit                             stop (the end of the script stops too)
