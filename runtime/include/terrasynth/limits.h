@@ -19,6 +19,11 @@ constexpr uint64_t kMaxFileBytes = uint64_t(4) << 30;  // 4 GiB
 constexpr uint64_t kMaxJsonBytes = uint64_t(256) << 20;  // 256 MiB
 constexpr int kMaxJsonDepth = 64;
 
+// ---- Heights ----
+// Any height or height offset a file carries (databases, edited-heights sidecars): finite and
+// within +-100 km, so no mesher, skirt or statistic ever meets a NaN or an infinity from a file.
+constexpr float kMaxAbsHeightM = 1e5f;
+
 // ---- Images (exemplars, heightmaps, masks) ----
 constexpr int kMaxImageSide = 65536;                       // pixels per side
 constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;    // 268 M samples (1 GiB of float heights)
