@@ -1,5 +1,6 @@
 // Exemplar readers: 16-bit PNG (+ sidecar or a given scale), raw float32 + sidecar, GeoTIFF via GDAL.
 #include <dirent.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -162,6 +163,9 @@ Result<Exemplar> readRawF32Exemplar(const std::string& path) {
 
 #ifdef TERRASYNTH_HAVE_GDAL
 Result<Exemplar> readGdalExemplar(const std::string& path) {
+    // GDAL opens the file itself and would block on a named pipe: only regular files go to it.
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return Status::error(path + ": not a regular file");
     GDALAllRegister();
     GDALDatasetH dataset = GDALOpen(path.c_str(), GA_ReadOnly);
     if (!dataset) return Status::error(path + ": GDAL cannot open this file");
