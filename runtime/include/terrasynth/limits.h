@@ -72,5 +72,9 @@ constexpr int kMaxRidgePoints = 10000;
 // Pixel visits of one ridge (each segment's reach over the grid; terrasynth::ridgeReliefCost), and
 // of one perspective stroke's ridge: a few seconds at the limit.
 constexpr uint64_t kMaxRidgeCost = uint64_t(1) << 31;
+// Hole fill: picks of one layer's lineage (each a generation of three quilts), and the pixel visits
+// of the whole lineage (terrasynth::holeFillCost): about half a minute at the limit.
+constexpr int kMaxHoleFillPicks = 64;
+constexpr uint64_t kMaxHoleFillCost = uint64_t(1) << 34;
 
 }  // namespace terrasynth::limits
