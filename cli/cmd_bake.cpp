@@ -95,10 +95,10 @@ private:
 };
 
 Failure runMerge(const std::string& folder) {
-    auto missing = findMissingTiles(folder);
-    if (!missing) return badInput(missing.message());
-    auto merged = mergeTileset(folder);  // refuses, naming them, when tiles are missing
-    if (!merged) return {missing->empty() ? 1 : kBadInput, merged.message()};
+    if (auto plan = findMissingTiles(folder); !plan) return badInput(plan.message());  // not a bake folder
+    std::vector<std::string> refused;
+    auto merged = mergeTileset(folder, &refused);  // refuses, naming them, when tiles are missing or damaged
+    if (!merged) return {refused.empty() ? 1 : kBadInput, merged.message()};
     std::printf("wrote %s/tileset.json: %lld tiles, %d levels, %s tiling, root geometric error %.1f m, %.1f MB of tiles\n",
                 folder.c_str(), (long long)merged->tiles, merged->depth, merged->implicit ? "implicit" : "explicit",
                 merged->root_geometric_error_m, merged->content_bytes / 1e6);

@@ -33,6 +33,10 @@ Status validateOptions(const TerrainNodeOptions& o) {
     return Status::ok();
 }
 
+int clampedMaxLevel(const TerrainNodeOptions& o, int database_levels) {
+    return std::max(o.min_level, std::min(o.max_level, database_levels - 1));
+}
+
 TerrainNode::TerrainNode(HeightSource source, double meters_per_pixel, const TerrainNodeOptions& options)
     : options_(options), source_(std::move(source)), store_(std::make_unique<TileStore>()) {
     const Status valid = validateOptions(options);

@@ -45,6 +45,13 @@ constexpr int64_t kMaxWindowOrigin = int64_t(1) << 29;
 constexpr int64_t kMaxProjectOrigin = int64_t(1) << 28;
 constexpr double kMaxConstraintCoordinate = double(int64_t(1) << 28);
 
+// ---- 3D Tiles bakes (docs/bake.md) ----
+// A bake's region lies within +-kMaxProjectOrigin (so every window it synthesizes fits the grid)
+// and holds at most this many level-0 samples (262144^2; about a day of CPU time) and this many
+// tiles (the plan, the merge and the tileset hold a record of each).
+constexpr uint64_t kMaxBakeSamples = uint64_t(1) << 36;
+constexpr int64_t kMaxBakeTiles = int64_t(1) << 22;
+
 // ---- Constraints (docs/project-format.md) ----
 // Point lifting synthesizes every site each round, grouped into shared windows; 20000 points over a
 // 1024^2 extent take a few whole-extent syntheses per round.

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/digest.h"
 #include "layers/layer_json.h"
 #include "terrasynth/layers.h"
 
@@ -22,18 +23,7 @@ void appendBlob(std::string& out, json& list, const char* name, const std::vecto
     out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
 }
 
-std::string hex(uint64_t v) {
-    char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
-    return text;
-}
-
 }  // namespace
-
-uint64_t fnv1a(const char* data, size_t n, uint64_t h) {
-    for (size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(data[i])) * 1099511628211ull;
-    return h;
-}
 
 ConstraintLifts liftsOf(const SynthesisConstraints* constraints) {
     ConstraintLifts lifts;
@@ -79,7 +69,7 @@ std::string encodeEditSidecar(const EditSidecar& s) {
         appendBlob(body, blobs, "reference.mask", m.pixels);
     }
     const json header = {{"format", "terrasynth-edited-heights"},
-                         {"digest", hex(s.digest)},
+                         {"digest", detail::digestText(s.digest)},
                          {"extent", {s.extent.x, s.extent.y, s.extent.width, s.extent.height}},
                          {"lifts", s.lifts.points},
                          {"tilts", s.lifts.tilts},
@@ -97,7 +87,7 @@ std::string encodeEditSidecar(const EditSidecar& s) {
     appendRaw(out, static_cast<uint64_t>(text.size()));
     out += text;
     out += body;
-    appendRaw(out, fnv1a(out.data(), out.size()));
+    appendRaw(out, detail::fnv1a(out.data(), out.size()));
     return out;
 }
 
@@ -112,15 +102,15 @@ uint64_t editDigest(const Project& p, const ExemplarDatabase& db, const Constrai
                                  std::to_string(jitter_bits) + "," + std::to_string(q.correction_passes) + "," +
                                  std::to_string(q.coarsest_level) + "," + std::to_string(q.first_constrained_level) +
                                  "," + std::to_string(p.hold_point_heights) + "|";
-    uint64_t h = fnv1a(settings.data(), settings.size());
-    h = fnv1a(constraints.json.data(), constraints.json.size(), h);
+    uint64_t h = detail::fnv1a(settings.data(), settings.size());
+    h = detail::fnv1a(constraints.json.data(), constraints.json.size(), h);
     for (const auto& m : constraints.masks) {
         const std::string name = "|" + m.file + "|";
-        h = fnv1a(name.data(), name.size(), h);
-        h = fnv1a(reinterpret_cast<const char*>(m.pixels.data()), m.pixels.size(), h);
+        h = detail::fnv1a(name.data(), name.size(), h);
+        h = detail::fnv1a(reinterpret_cast<const char*>(m.pixels.data()), m.pixels.size(), h);
     }
-    h = fnv1a("|", 1, h);
-    return fnv1a(layers.data(), layers.size(), h);
+    h = detail::fnv1a("|", 1, h);
+    return detail::fnv1a(layers.data(), layers.size(), h);
 }
 
 Result<uint64_t> projectEditDigest(const Project& p, const ExemplarDatabase& db) {

@@ -44,8 +44,6 @@ struct EditSidecar {
 };
 
 constexpr char kEditSidecarMagic[8] = {'T', 'S', 'Y', 'N', 'E', 'D', 'I', 'T'};
-// FNV-1a 64, chained through `h`: the file's checksum and the edit digest.
-uint64_t fnv1a(const char* data, size_t n, uint64_t h = 1469598103934665603ull);
 
 std::string encodeEditSidecar(const EditSidecar& sidecar);
 // The file validated whole (edit_sidecar_read.cpp): the header parsed with bounded depth and read

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/digest.h"
 #include "core/json_reader.h"
 #include "core/number_text.h"
 #include "project/edit_sidecar.h"
@@ -43,26 +44,10 @@ Result<json> readHeader(const std::string& bytes, const std::string& path, size_
     return header;
 }
 
-// Exactly 16 hex digits (as encodeEditSidecar writes them), never a partial or signed number.
-bool parseHexDigest(const std::string& text, uint64_t* out) {
-    if (text.size() != 16) return false;
-    uint64_t v = 0;
-    for (char c : text) {
-        int d = -1;
-        if (c >= '0' && c <= '9') d = c - '0';
-        else if (c >= 'a' && c <= 'f') d = c - 'a' + 10;
-        else if (c >= 'A' && c <= 'F') d = c - 'A' + 10;
-        if (d < 0) return false;
-        v = v << 4 | static_cast<uint64_t>(d);
-    }
-    *out = v;
-    return true;
-}
-
 uint64_t readDigest(JsonReader& r) {
     uint64_t digest = 0;
     const std::string text = r.string("digest", "");
-    if (r.ok() && !parseHexDigest(text, &digest)) r.fail("digest", "must be 16 hexadecimal digits");
+    if (r.ok() && !detail::parseDigestText(text, &digest)) r.fail("digest", "must be 16 hexadecimal digits");
     return digest;
 }
 
@@ -279,7 +264,7 @@ Result<EditSidecar> decodeEditSidecar(const std::string& bytes, const std::strin
     if (!header) return header.status();
     uint64_t stored = 0;
     std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
-    if (stored != fnv1a(bytes.data(), bytes.size() - 8)) return Status::error(path + ": checksum mismatch (corrupt file)");
+    if (stored != detail::fnv1a(bytes.data(), bytes.size() - 8)) return Status::error(path + ": checksum mismatch (corrupt file)");
     EditSidecar s;
     if (Status st = readBody(bytes, blobs_at, *header, with_history, s); !st) return st.withContext(path);
     return s;
