@@ -9,16 +9,15 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
+#include "wait_until.h"
 
 using namespace terrasynth;
 namespace fs = std::filesystem;
@@ -36,18 +35,6 @@ int countGlbs(const std::string& world) {
          it.increment(ec))
         n += it->path().extension() == ".glb";
     return n;
-}
-
-// Waits for `done` with a deadline of minutes, not a time window: on a loaded machine it just takes
-// longer. False when the deadline passed.
-template <class Condition>
-bool waitFor(Condition done) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(10);
-    while (!done()) {
-        if (std::chrono::steady_clock::now() > deadline) return false;
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return true;
 }
 
 // This machine's name as FileTransaction puts it into temporary names ('.' and '/' as '_').
@@ -86,12 +73,12 @@ protected:
                                     extra + " > '" + at + "' 2>&1 & echo $! > '" + at + ".pid'; wait $!; echo $? > '" + at +
                                     ".rc') &";
         EXPECT_EQ(std::system(command.c_str()), 0);
-        EXPECT_TRUE(waitFor([&] { return !test::readFile(at + ".pid").empty(); }));
+        EXPECT_TRUE(test::waitUntil([&] { return !test::readFile(at + ".pid").empty(); }));
         return std::stoi(test::readFile(at + ".pid"));
     }
     // The exit code a background bake wrote when it ended (waits for it).
     int finished(const std::string& log) {
-        EXPECT_TRUE(waitFor([&] { return !test::readFile(dir_ + "/" + log + ".rc").empty(); })) << log << " never ended";
+        EXPECT_TRUE(test::waitUntil([&] { return !test::readFile(dir_ + "/" + log + ".rc").empty(); })) << log << " never ended";
         return std::stoi("0" + test::readFile(dir_ + "/" + log + ".rc"));
     }
 
@@ -123,7 +110,7 @@ TEST_F(BakeHostile, TwoBakesOfTheSameShardAtOnceEndAsOneCleanBake) {
     // The second starts once the first is writing tiles, as a requeued Slurm task would; before,
     // its stale-temporary cleanup deleted the first's in-flight files ("cannot replace the file").
     start(world, " --shard 0/2 --threads 1", "first.log");
-    ASSERT_TRUE(waitFor([&] { return countGlbs(world) >= 3; }));
+    ASSERT_TRUE(test::waitUntil([&] { return countGlbs(world) >= 3; }));
     start(world, " --shard 0/2 --threads 1", "second.log");
     EXPECT_EQ(finished("first.log"), 0) << test::readFile(dir_ + "/first.log");
     EXPECT_EQ(finished("second.log"), 0) << test::readFile(dir_ + "/second.log");
@@ -138,7 +125,7 @@ TEST_F(BakeHostile, TwoWholeBakesIntoOneFolderEndAsOneCleanBake) {
     const std::string reference = clean();
     const std::string world = dir_ + "/both";
     start(world, " --threads 1", "first.log");
-    ASSERT_TRUE(waitFor([&] { return countGlbs(world) >= 3; }));
+    ASSERT_TRUE(test::waitUntil([&] { return countGlbs(world) >= 3; }));
     start(world, " --threads 1", "second.log");
     EXPECT_EQ(finished("first.log"), 0) << test::readFile(dir_ + "/first.log");
     EXPECT_EQ(finished("second.log"), 0) << test::readFile(dir_ + "/second.log");
@@ -149,9 +136,9 @@ TEST_F(BakeHostile, AKilledBakeRerunRemovesOnlyDeadWritersTemporaries) {
     const std::string reference = clean();
     const std::string world = dir_ + "/killed";
     const pid_t pid = start(world, " --threads 1", "killed.log");
-    ASSERT_TRUE(waitFor([&] { return countGlbs(world) >= 3; }));
+    ASSERT_TRUE(test::waitUntil([&] { return countGlbs(world) >= 3; }));
     ASSERT_EQ(::kill(pid, SIGKILL), 0);
-    ASSERT_TRUE(waitFor([&] { return ::kill(pid, 0) != 0; }));
+    ASSERT_TRUE(test::waitUntil([&] { return ::kill(pid, 0) != 0; }));
     // What a writer killed mid-file leaves (the killed process's name), and one of a live process
     // (this test's), which the re-run must not touch.
     const std::string tile = world + "/tiles/3/0/0.glb";
