@@ -73,6 +73,20 @@ TEST(PluginReader, BadOptionValuesAreReportedByName) {
         auto p = parsePluginOptions(bad);
         EXPECT_FALSE(p) << bad;
     }
+    // NaN and infinity passed the range checks: skirt=inf wrote 1281 vertices at z = -inf through
+    // osgconv. Each is refused, naming the option, and the reader answers an error, not a node.
+    for (const char* bad : {"skirt=inf", "sunElevation=nan", "sunAzimuth=inf", "snowLine=nan", "pixelError=nan",
+                            "viewRadius=inf", "fog=nan", "mergeBudgetMs=-inf"}) {
+        auto p = parsePluginOptions(bad);
+        ASSERT_FALSE(p) << bad;
+        const std::string name = std::string(bad).substr(0, std::string(bad).find('='));
+        EXPECT_NE(p.message().find("option " + name + "="), std::string::npos) << p.message();
+        EXPECT_NE(p.message().find("finite"), std::string::npos) << p.message();
+    }
+    osg::ref_ptr<osgDB::Options> infinite_skirt = new osgDB::Options("skirt=inf");
+    auto refused = rw->readNode(path, infinite_skirt.get());
+    EXPECT_EQ(refused.status(), osgDB::ReaderWriter::ReadResult::ERROR_IN_READING_FILE);
+    EXPECT_NE(refused.message().find("skirt"), std::string::npos) << refused.message();
 }
 
 TEST(PluginReader, ReadsAProjectAndOsgconvWritesIt) {
