@@ -5,9 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <chrono>
 #include <memory>
-#include <thread>
 
 #include "terrasynth/edit_session.h"
 #include "terrasynth_editor/edit_worker.h"

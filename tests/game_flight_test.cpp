@@ -80,8 +80,8 @@ TEST(GameGround, CachedBlocksGiveTheSourcesExactHeights) {
         EXPECT_NEAR(std::hypot(std::hypot(cached->normal[0], cached->normal[1]), cached->normal[2]), 1.0, 1e-12);
         EXPECT_GT(cached->normal[2], 0.0);
     }
-    // Far from anything wanted: no answer, and no waiting for one: nothing is fetched for it (what a
-    // sample costs in time is the game benchmark's to measure, not a test's on a shared machine).
+    // Far from anything wanted: no answer, and no waiting for one: nothing is fetched for it (how long
+    // a sample takes is not a test's to assert on a shared machine).
     const GroundCache::Stats fetched_before = w.cache->stats();
     EXPECT_FALSE(w.cache->sample(w.cx + 5e6, w.cy).has_value());
     EXPECT_TRUE(w.cache->idle());

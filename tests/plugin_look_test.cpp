@@ -9,10 +9,8 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <string>
-#include <thread>
 
 #include <osg/DisplaySettings>
 #include <osg/Material>
