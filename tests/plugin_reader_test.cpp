@@ -28,6 +28,17 @@ osgDB::ReaderWriter* tsynReader() {
     return osgDB::Registry::instance()->getReaderWriterForExtension("tsyn");
 }
 
+// Stock osgconv converts <dir>/world.tsyn with `options` into <dir>/out.osgb, which reads back
+// with tiles in it.
+void expectOsgconvWrites(const std::string& dir, const std::string& options) {
+    const std::string cmd = std::string("OSG_LIBRARY_PATH='") + TERRASYNTH_TEST_OSG_LIBRARY_PATH + "' osgconv -O '" +
+                            options + "' '" + dir + "/world.tsyn' '" + dir + "/out.osgb' > '" + dir + "/osgconv.log' 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << test::readFile(dir + "/osgconv.log");
+    osg::ref_ptr<osg::Node> written = osgDB::readRefNodeFile(dir + "/out.osgb");
+    ASSERT_TRUE(written.valid());
+    EXPECT_GT(written->asGroup()->getNumChildren(), 0u);
+}
+
 TEST(PluginReader, LoadsForTheTsynExtension) {
     osgDB::ReaderWriter* rw = tsynReader();
     ASSERT_NE(rw, nullptr) << "osgdb_tsyn not found under " << TERRASYNTH_TEST_OSG_LIBRARY_PATH;
@@ -136,13 +147,7 @@ TEST(PluginReader, ReadsAProjectAndOsgconvWritesIt) {
     EXPECT_TRUE(rw->readObject(dir + "/world.tsyn", opts.get()).success());
 
     // The stock converter, finding the plugin through OSG_LIBRARY_PATH.
-    const std::string cmd = std::string("OSG_LIBRARY_PATH='") + TERRASYNTH_TEST_OSG_LIBRARY_PATH +
-                            "' osgconv -O 'tileSize=64 maxLevel=3 threads=2' '" + dir + "/world.tsyn' '" + dir +
-                            "/out.osgb' > '" + dir + "/osgconv.log' 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << "see " << dir << "/osgconv.log";
-    osg::ref_ptr<osg::Node> written = osgDB::readRefNodeFile(dir + "/out.osgb");
-    ASSERT_TRUE(written.valid());
-    EXPECT_GT(written->asGroup()->getNumChildren(), 0u);
+    expectOsgconvWrites(dir, "tileSize=64 maxLevel=3 threads=2");
 }
 
 TEST(PluginReader, MaxLevelIsClampedToAPrebuiltDatabasesLevels) {
@@ -179,13 +184,7 @@ TEST(PluginReader, MaxLevelIsClampedToAPrebuiltDatabasesLevels) {
     EXPECT_FALSE(refused.success());
     EXPECT_NE(refused.message().find("0..2"), std::string::npos) << refused.message();
 
-    const std::string cmd = std::string("OSG_LIBRARY_PATH='") + TERRASYNTH_TEST_OSG_LIBRARY_PATH +
-                            "' osgconv -O 'tileSize=64 threads=2' '" + dir + "/world.tsyn' '" + dir +
-                            "/out.osgb' > '" + dir + "/osgconv.log' 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << test::readFile(dir + "/osgconv.log");
-    osg::ref_ptr<osg::Node> written = osgDB::readRefNodeFile(dir + "/out.osgb");
-    ASSERT_TRUE(written.valid());
-    EXPECT_GT(written->asGroup()->getNumChildren(), 0u);
+    expectOsgconvWrites(dir, "tileSize=64 threads=2");
 }
 
 }  // namespace
