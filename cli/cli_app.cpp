@@ -12,6 +12,7 @@ struct Entry {
     std::string name;
     int order;
     CommandSetup setup;
+    int bad_flag_exit;
 };
 std::vector<Entry>& registry() {
     static std::vector<Entry> entries;
@@ -19,8 +20,8 @@ std::vector<Entry>& registry() {
 }
 }  // namespace
 
-CommandRegistration::CommandRegistration(const char* name, int order, CommandSetup setup) {
-    registry().push_back({name, order, std::move(setup)});
+CommandRegistration::CommandRegistration(const char* name, int order, CommandSetup setup, int bad_flag_exit) {
+    registry().push_back({name, order, std::move(setup), bad_flag_exit});
 }
 
 int& exitCode() {
@@ -87,6 +88,15 @@ std::string unknownCommand(CLI::App& app, int argc, const char* const* argv) {
     return "";
 }
 
+// The exit code for flags that do not parse: that of the command being parsed (1 before one is).
+int badFlagExit(CLI::App& app, const std::vector<Entry>& entries) {
+    const std::vector<CLI::App*> parsed = app.get_subcommands();
+    if (parsed.empty()) return 1;
+    for (const Entry& e : entries)
+        if (e.name == parsed.front()->get_name()) return e.bad_flag_exit;
+    return 1;
+}
+
 }  // namespace
 
 int runCli(int argc, const char* const* argv) {
@@ -112,7 +122,7 @@ int runCli(int argc, const char* const* argv) {
                 return app.exit(e);
             } catch (const CLI::ParseError& e) {
                 std::fprintf(stderr, "%s: %s\nRun with --help for more information.\n", commandPath(app).c_str(), e.what());
-                return 1;
+                return badFlagExit(app, entries);
             }
             return exitCode();
         },

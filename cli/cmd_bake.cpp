@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "command_registry.h"
+#include "terrasynth_cli/flag_checks.h"
 #include "terrasynth/gltf_export.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/terrain.h"
@@ -94,10 +95,10 @@ private:
 };
 
 Failure runMerge(const std::string& folder) {
-    auto missing = findMissingTiles(folder);
-    if (!missing) return badInput(missing.message());
-    auto merged = mergeTileset(folder);  // refuses, naming them, when tiles are missing
-    if (!merged) return {missing->empty() ? 1 : kBadInput, merged.message()};
+    if (auto plan = findMissingTiles(folder); !plan) return badInput(plan.message());  // not a bake folder
+    std::vector<std::string> refused;
+    auto merged = mergeTileset(folder, &refused);  // refuses, naming them, when tiles are missing or damaged
+    if (!merged) return {refused.empty() ? 1 : kBadInput, merged.message()};
     std::printf("wrote %s/tileset.json: %lld tiles, %d levels, %s tiling, root geometric error %.1f m, %.1f MB of tiles\n",
                 folder.c_str(), (long long)merged->tiles, merged->depth, merged->implicit ? "implicit" : "explicit",
                 merged->root_geometric_error_m, merged->content_bytes / 1e6);
@@ -189,16 +190,18 @@ void addBakeCommand(CLI::App& app) {
     cmd->add_option("project", a->project, "Project file (.tsyn)");
     cmd->add_option("-o,--output", a->output, "Output folder (created; shards of one bake share it)");
     cmd->add_option("--merge", a->merge, "Write FOLDER/tileset.json from the tiles the shards baked");
-    cmd->add_option("--region", a->region, "X,Y,W,H level-0 samples (default: the project extent)")->delimiter(',');
-    cmd->add_option("--tile", a->tile, "Quads per tile side (2..4096)");
-    cmd->add_option("--levels", a->levels, "Levels of detail: quadtree levels with content (1..16)");
+    cmd->add_option("--region", a->region, "X,Y,W,H level-0 samples (default: the project extent)")
+        ->delimiter(',')
+        ->check(FiniteRange(-kMaxRegionNumber, kMaxRegionNumber));
+    cmd->add_option("--tile", a->tile, "Quads per tile side (2..4096)")->check(FiniteRange(2, 4096));
+    cmd->add_option("--levels", a->levels, "Levels of detail: quadtree levels with content (1..16)")->check(FiniteRange(1, 16));
     cmd->add_flag("--quantize", a->quantize, "KHR_mesh_quantization: 16-bit positions, 8-bit normals, 16-bit indices");
     cmd->add_option("--tileset", a->tileset, "auto (implicit for deep trees), explicit or implicit");
     cmd->add_option("--heightmaps", a->heightmaps, "Per-leaf heightmaps: png (16-bit + sidecar), f32 or tif");
     cmd->add_flag("--masks", a->masks, "Per-leaf splat masks, one 8-bit PNG per terrain type");
     cmd->add_option("--shard", a->shard, "Bake only shard I of N (I/N); run --merge when all are done");
     cmd->add_flag("--prepare", a->prepare, "Only build the project's database and write the plan (before a sharded bake)");
-    cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)")->check(CLI::Range(0, 1024));
+    cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)")->check(FiniteRange(0, 1024));
     cmd->add_option("--progress", a->progress, "auto (bar on a terminal, else lines), bar, lines or none");
     cmd->callback([a] {
         const Failure f = runBake(*a);
@@ -209,7 +212,7 @@ void addBakeCommand(CLI::App& app) {
     });
 }
 
-const CommandRegistration kReg{"bake", 65, addBakeCommand};
+const CommandRegistration kReg{"bake", 65, addBakeCommand, kBadInput};
 
 }  // namespace
 }  // namespace terrasynth::cli

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "command_registry.h"
+#include "terrasynth_cli/flag_checks.h"
 #include "outputs.h"
 #include "terrasynth/file_transaction.h"
 #include "terrasynth/limits.h"
@@ -95,8 +96,11 @@ void addLayersCommand(CLI::App& app) {
     cmd->add_option("project", args->project, "Project file (.tsyn) or a JSON array of layers")->required();
     cmd->add_flag("--json", args->json, "Print the normalised JSON instead of the summary");
     cmd->add_option("--apply", args->apply, "Heightmap to use as the base/grid (any format readExemplar reads)");
-    cmd->add_option("--size", args->size, "Grid W,H for a fractal or blank base")->delimiter(',')->expected(2);
-    cmd->add_option("--mpp", args->mpp, "Grid spacing in metres per pixel (with --size)");
+    cmd->add_option("--size", args->size, "Grid W,H for a fractal or blank base")
+        ->delimiter(',')
+        ->expected(2)
+        ->check(FiniteRange(1, limits::kMaxImageSide));
+    cmd->add_option("--mpp", args->mpp, "Grid spacing in metres per pixel (with --size)")->check(FiniteRange(1e-6, 1e5));
     cmd->add_option("-o,--output", args->output, "Write the composed heightmap (.png, .f32, .exr)");
     cmd->add_option("--hillshade", args->hillshade, "Write a hillshade PNG of the composed terrain");
     setAction(cmd, [args] { runLayers(*args); });

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.h"
+#include "terrasynth_cli/flag_checks.h"
 #include "outputs.h"
 #include "terrasynth/curve_course.h"
 #include "terrasynth/file_transaction.h"
@@ -226,8 +227,8 @@ void addSynthCommand(CLI::App& app) {
     cmd->add_option("-o,--output", args->output, "Heightmap to write: .png (16-bit + sidecar), .f32, .exr, .tif (float32 GeoTIFF, local metric CRS)")->required();
     cmd->add_option("--size", args->size, "WxH in pixels (default: the project's, 1024x1024)");
     cmd->add_option("--origin", args->origin, "X,Y global pixel of the north-west corner (default 0,0)");
-    cmd->add_option("--seed", args->seed, "Random seed (default: the project's)");
-    cmd->add_option("--level", args->level, "Pyramid level to output (0 = full resolution)")->check(CLI::Range(0, 12));
+    cmd->add_option("--seed", args->seed, "Random seed (default: the project's)")->check(FiniteRange(0, 4294967295.0));
+    cmd->add_option("--level", args->level, "Pyramid level to output (0 = full resolution)")->check(FiniteRange(0, 12));
     cmd->add_option("--sources", args->sources, "Write the exemplar coordinate map (16-bit RGB PNG)");
     cmd->add_option("--preview", args->preview, "Write a hillshade preview PNG");
     cmd->add_option("--backend", args->backend, "opencl (default) or reference (plain C++)");

@@ -13,8 +13,10 @@ namespace terrasynth::cli {
 
 using CommandSetup = std::function<void(CLI::App& app)>;
 
+// `bad_flag_exit`: the exit code when the command's flags do not parse (a value out of range, NaN,
+// an unknown flag): 1, or 2 for commands whose docs promise 2 for bad input (bake, docs/bake.md).
 struct CommandRegistration {
-    CommandRegistration(const char* name, int order, CommandSetup setup);
+    CommandRegistration(const char* name, int order, CommandSetup setup, int bad_flag_exit = 1);
 };
 
 // Exit code set by the command that ran; 0 when it succeeded.
@@ -27,7 +29,7 @@ bool& parseOnly();
 
 // The whole program: builds the commands, parses argv, runs the chosen command. Returns the exit
 // code: 0, or 1 with a message naming the command on stderr (bad flags, failed command, and any
-// exception, e.g. out of memory).
+// exception, e.g. out of memory); bad flags of a command registered with bad_flag_exit 2 give 2.
 int runCli(int argc, const char* const* argv);
 
 // Prints "terrasynth <command>: <message>" to stderr and sets the exit code to 1.

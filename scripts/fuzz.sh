@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-600}
-read -r -a targets <<< "${FUZZ_TARGETS:-exemplar_png exemplar_f32 database project cli_flags}"
+read -r -a targets <<< "${FUZZ_TARGETS:-exemplar_png exemplar_f32 database project cli_flags edit_sidecar}"
 cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DTERRASYNTH_FUZZ=ON -DTERRASYNTH_SANITIZE=address,undefined -DTERRASYNTH_WITH_OPENCL=OFF \
   -DTERRASYNTH_BUILD_PLUGIN=OFF -DTERRASYNTH_BUILD_HOST=OFF -DTERRASYNTH_BUILD_EDITOR=OFF -DTERRASYNTH_BUILD_GAME=OFF \

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/workers.h"
+#include "wait_until.h"
 
 namespace terrasynth {
 namespace {
@@ -39,11 +40,17 @@ TEST(CoreWorkers, FewerThanOneWorkerRunsOneOnTheCallingThread) {
 TEST(CoreWorkers, AWorkersExceptionReachesTheCallerOnceAllHaveFinished) {
     // Before core/workers.h, the drainage breach's workers had no guard: an exception there (a
     // carve list out of memory) ended the process with std::terminate.
+    // The others finish only after worker 2 has thrown (a condition, not a pause), so the caller
+    // must have waited for them.
     std::atomic<int> finished{0};
+    std::atomic<bool> thrown{false};
     try {
         runOnWorkers(3, [&](int worker) {
-            if (worker == 2) throw std::runtime_error("worker 2 failed");
-            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            if (worker == 2) {
+                thrown = true;
+                throw std::runtime_error("worker 2 failed");
+            }
+            EXPECT_TRUE(test::waitUntil([&] { return thrown.load(); }));
             ++finished;
         });
         FAIL() << "the worker's exception was not rethrown";

@@ -110,6 +110,24 @@ TEST(EditorOptions, CommandLineAndAutosave) {
     EXPECT_NE(parseEditorOptions(4, bad_colour).message().find("--clear-color"), std::string::npos);
     const char* none[] = {"e"};
     EXPECT_FALSE(parseEditorOptions(1, none));
+    // NaN reached an ImGui assertion (--ui-scale nan aborted the editor): every number is checked
+    // for a finite value in range, the flag named.
+    for (const char* flag : {"--ui-scale", "--drag-preview-levels"})
+        for (const char* value : {"nan", "inf", "-inf"}) {
+            const char* argv[] = {"e", "w.tsyn", flag, value};
+            const auto refused = parseEditorOptions(4, argv);
+            ASSERT_FALSE(refused) << flag << " " << value;
+            EXPECT_NE(refused.message().find(flag), std::string::npos) << refused.message();
+            EXPECT_NE(refused.message().find("expected a finite number in ["), std::string::npos) << refused.message();
+        }
+    const char* infinite_skirt[] = {"e", "w.tsyn", "--terrain-options", "skirt=inf"};
+    EXPECT_NE(parseEditorOptions(4, infinite_skirt).message().find("skirt"), std::string::npos);
+    // --stats is written at exit, so an unwritable one is refused up front (as the game does).
+    const std::string unwritable = test::scratchDir("editor_stats_target") + "/no/such/folder/stats.json";
+    const char* bad_stats[] = {"e", "w.tsyn", "--stats", unwritable.c_str()};
+    const auto stats = parseEditorOptions(4, bad_stats);
+    ASSERT_FALSE(stats);
+    EXPECT_NE(stats.message().find("--stats"), std::string::npos) << stats.message();
 
     EXPECT_EQ(terrainPixelError("llvmpipe (LLVM 15.0.6, 256 bits)"), 12.0f);
     EXPECT_EQ(terrainPixelError("NVIDIA GeForce RTX 3060/PCIe/SSE2"), 6.0f);

@@ -4,14 +4,15 @@
 // overlay masks, and the latency bookkeeping on top.
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <thread>
+#include <atomic>
+#include <memory>
 
 #include "terrasynth/edit_session.h"
 #include "terrasynth_editor/edit_worker.h"
 #include "terrasynth_editor/latency.h"
 #include "headless_view.h"
 #include "test_support.h"
+#include "wait_until.h"
 
 namespace terrasynth::editor {
 namespace {
@@ -74,17 +75,22 @@ TEST(EditorWorker, DragsCoalesceLatestWinsAndAGestureIsOneUndoStep) {
     ASSERT_TRUE(worker->takeResults().front().status);
     const Heightfield added = heightsOf(*worker);
 
-    // Hold the edit thread, then queue a drag of 30 moves: only the newest waits at the tail.
-    worker->submit(request("gesture", [](EditSession& s) -> Result<PixelWindow> {
+    // Hold the edit thread, then queue a drag of 30 moves: only the newest waits at the tail. The
+    // thread is held until all 30 are queued (a latch, not a sleep: on a loaded machine the queueing
+    // may take longer than any pause).
+    auto held = std::make_shared<std::atomic<bool>>(false), released = std::make_shared<std::atomic<bool>>(false);
+    worker->submit(request("gesture", [held, released](EditSession& s) -> Result<PixelWindow> {
         s.beginGesture();
-        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        *held = true;
+        EXPECT_TRUE(test::waitUntil([&] { return released->load(); }));
         return PixelWindow{};
     }));
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_TRUE(test::waitUntil([&] { return held->load(); }));
     for (int i = 1; i <= 30; ++i) {
         const double x = 128 + i, y = 128 + i / 2;
         worker->submit(request("move point", [id, x, y](EditSession& s) { return s.movePoint(*id, x, y); }, "drag"));
     }
+    *released = true;
     worker->submit(request("gesture", [](EditSession& s) -> Result<PixelWindow> {
         s.endGesture();
         return PixelWindow{};
@@ -177,12 +183,11 @@ TEST(EditorWorker, TheTerrainRebuildsOnlyTilesTouchingTheChangedWindow) {
     const osg::Vec3d centre(f.worldX(kSize / 2), f.worldY(kSize / 2), 0.5 * (view->min_height_m + view->max_height_m));
     const osg::Vec3d eye = centre + osg::Vec3d(0.0, -12000.0, 25000.0);
     auto settle = [&] {
-        for (int i = 0; i < 2000; ++i) {
+        int frames = 0;
+        return test::waitUntil([&] {
             headless.frame(eye, centre);
-            if (i > 3 && node->settled()) return true;
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
-        return false;
+            return ++frames > 4 && node->settled();
+        });
     };
     ASSERT_TRUE(settle());
     const plugin::TerrainStats before = node->stats();

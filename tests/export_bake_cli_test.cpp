@@ -22,6 +22,7 @@
 
 #include "terrasynth/heightfield_io.h"
 #include "test_support.h"
+#include "wait_until.h"
 
 using namespace terrasynth;
 namespace fs = std::filesystem;
@@ -296,16 +297,17 @@ TEST_F(BakeCli, KilledShardRerunGivesTheSameBytes) {
 
     // Shard 0 of 2 on one thread, killed (SIGKILL) once it has written a few tiles.
     const std::string sharded = dir + "/sharded";
-    const std::string start = test::binDir() + "/terrasynth bake '" + project + "' -o '" + sharded + "'" + options +
+    // A subshell waits for it, so once killed it is reaped and kill(pid, 0) fails.
+    const std::string start = "(" + test::binDir() + "/terrasynth bake '" + project + "' -o '" + sharded + "'" + options +
                               " --shard 0/2 --threads 1 --progress none > '" + dir + "/shard0.log' 2>&1 & echo $! > '" +
-                              dir + "/shard0.pid'";
+                              dir + "/shard0.pid'; wait $!) &";
     ASSERT_EQ(std::system(start.c_str()), 0);
+    ASSERT_TRUE(test::waitUntil([&] { return !test::readFile(dir + "/shard0.pid").empty(); }));
     const pid_t pid = std::stoi(test::readFile(dir + "/shard0.pid"));
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    while (countGlbs(sharded) < 3 && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ASSERT_TRUE(test::waitUntil([&] { return countGlbs(sharded) >= 3; }, std::chrono::minutes(10),
+                                std::chrono::milliseconds(10)));
     ASSERT_EQ(::kill(pid, SIGKILL), 0) << "shard 0 ended before it could be killed";
-    for (int i = 0; i < 200 && ::kill(pid, 0) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ASSERT_TRUE(test::waitUntil([&] { return ::kill(pid, 0) != 0; })) << "shard 0 outlived SIGKILL";
     int written = 0;
     EXPECT_TRUE(allGlbsComplete(sharded, &written)) << "a partial .glb under its final name";
     const test::CliRun shard1 = bake("'" + project + "' -o '" + sharded + "'" + options + " --shard 1/2");

@@ -66,6 +66,12 @@ TEST(GameBadInput, RefusedBeforeAnyWindowWithExitCodeTwo) {
     expectRefused("--bogus", "--bogus");
     expectRefused("--size 10x10", "--size 10x10");
     expectRefused("--start 12", "--start 12");
+    // NaN and infinity: --autopilot nan, --heading nan and --start 1e300,0 hung, --fixed-dt nan was
+    // silently ignored.
+    for (const char* flag : {"--autopilot", "--heading", "--fixed-dt", "--seed", "--check-holes"})
+        for (const char* value : {"nan", "inf"}) expectRefused(std::string(flag) + " " + value, std::string(flag) + ": expected a finite number in [");
+    expectRefused("--start 1e300,0", "--start");
+    expectRefused("--start nan,0", "--start");
     expectRefused("--project " + dir + "/missing.tsyn", dir + "/missing.tsyn");
     // An invalid project: the loader's message names the file and the field.
     std::ofstream(dir + "/bad.tsyn") << R"({"format": "terrasynth-project", "version": 1, "exemplars": ["ex"], "size": [-5, 3]})";

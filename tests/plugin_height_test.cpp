@@ -16,6 +16,7 @@
 #include "terrasynth_plugin/terrain_node.h"
 #include "plugin_test_options.h"
 #include "test_support.h"
+#include "wait_until.h"
 
 namespace terrasynth::plugin {
 namespace {
@@ -172,8 +173,15 @@ TEST(PluginHeight, ConcurrentQueriesWhileTilesPageInAndOut) {
         const double t = f / 300.0;
         const osg::Vec3d eye(5000 + 50000 * t, -5000 - 50000 * t, 4000);
         view.frame(eye, eye + osg::Vec3d(3000, -3000, -1500));
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));  // lets the workers build (no wait)
     }
+    // However slowly the workers and the queries ran, the view at the end converges and is asked
+    // enough times (a deadline, not a window).
+    const osg::Vec3d end(55000, -55000, 4000);
+    EXPECT_TRUE(test::waitUntil([&] {
+        view.frame(end, end + osg::Vec3d(3000, -3000, -1500));
+        return fx.node->settled() && answered > 100;
+    }));
     stop = true;
     a.join();
     b.join();
@@ -190,16 +198,14 @@ TEST(PluginPrefetch, BuildsTilesAheadOfTheCamera) {
     const std::vector<TileKey> keys = {{1, -6, -6}, {2, -3, -3}};  // level-1 and level-2 tiles over it
     for (int f = 0; f < 5; ++f) view.frame(eye, center);
     for (const TileKey& k : keys) ASSERT_FALSE(fx.node->tileNode(k)) << "already resident without prefetching";
-    bool all = false;
-    for (int f = 0; f < 3000 && !all; ++f) {
+    const bool all = test::waitUntil([&] {
         for (int level : {2, 1}) fx.node->prefetch(ahead, level);
         view.frame(eye, center);
-        all = true;
-        for (const TileKey& k : keys) all = all && fx.node->tileNode(k);
+        bool resident = true;
+        for (const TileKey& k : keys) resident = resident && fx.node->tileNode(k);
         // The region spans more tiles than the two named; wait for every one asked for.
-        all = all && fx.node->stats().prefetch_requests == 0;
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+        return resident && fx.node->stats().prefetch_requests == 0;
+    });
     EXPECT_TRUE(all) << "prefetched tiles never became resident";
     // Now the surface there is known without the camera having been near it.
     EXPECT_TRUE(fx.heightAtPixel(-680.5, -670.5).has_value());
@@ -211,11 +217,11 @@ TEST(PluginPrefetch, RefinementDistanceIsWhereTheCullDrawsEachLevel) {
     EXPECT_EQ(fx.node->refinementDistance(0), 0.0);
     test::HeadlessView view(fx.node.get());
     const osg::Vec3d eye(20000, -20000, 4500), center(26000, -26000, 1500);
-    for (int f = 0; f < 3000; ++f) {
+    int frames = 0;
+    ASSERT_TRUE(test::waitUntil([&] {
         view.frame(eye, center);
-        if (f > 2 && fx.node->settled()) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+        return ++frames > 3 && fx.node->settled();
+    }));
     const double d0 = fx.node->refinementDistance(0);
     EXPECT_GT(d0, 0.0);
     EXPECT_DOUBLE_EQ(fx.node->refinementDistance(1), 2.0 * d0);

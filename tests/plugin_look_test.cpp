@@ -9,10 +9,8 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <string>
-#include <thread>
 
 #include <osg/DisplaySettings>
 #include <osg/Material>
@@ -24,6 +22,7 @@
 #include "render_support.h"
 #include "terrasynth_plugin/terrain_node.h"
 #include "test_support.h"
+#include "wait_until.h"
 
 namespace terrasynth::plugin {
 namespace {
@@ -53,13 +52,13 @@ struct Scene {
         window_error = test::setUpWindowViewer(viewer, kWidth, kHeight, kClear, fovy_deg, capture.get());
         viewer.setSceneData(node.get());
     }
-    // Frames until every wanted tile is drawn.
+    // Frames until every wanted tile is drawn (however long that takes, within a deadline).
     void settle() {
-        for (int f = 0; f < 2000; ++f) {
+        int frames = 0;
+        EXPECT_TRUE(test::waitUntil([&] {
             viewer.frame();
-            if (f > 3 && node->settled()) break;
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
+            return ++frames > 4 && node->settled();
+        })) << "the view never converged";
         viewer.frame();
     }
     void lookDownFrom(const osg::Vec3d& eye, const osg::Vec3d& up) {

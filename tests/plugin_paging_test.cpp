@@ -5,8 +5,10 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <set>
 #include <thread>
 
@@ -14,6 +16,7 @@
 #include "terrasynth_plugin/terrain_node.h"
 #include "plugin_test_options.h"
 #include "test_support.h"
+#include "wait_until.h"
 
 namespace terrasynth::plugin {
 namespace {
@@ -30,14 +33,15 @@ struct Fixture {
         node = new TerrainNode(source, dem.meters_per_pixel_x, o);
         view = std::make_unique<test::HeadlessView>(node.get());
     }
-    // Frames until the view has converged (workers run meanwhile).
-    int settle(const osg::Vec3d& eye, const osg::Vec3d& center, int max_frames = 3000) {
-        for (int f = 0; f < max_frames; ++f) {
+    // Frames until the view has converged (workers run meanwhile): the frames drawn, or -1 when it
+    // did not within test::waitUntil's deadline (minutes, not a frame count: load only slows it).
+    int settle(const osg::Vec3d& eye, const osg::Vec3d& center) {
+        int frames = 0;
+        const bool converged = test::waitUntil([&] {
             view->frame(eye, center);
-            if (f > 2 && node->settled()) return f;
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
-        return -1;
+            return ++frames > 3 && node->settled();
+        });
+        return converged ? frames : -1;
     }
 };
 
@@ -112,26 +116,34 @@ TEST(PluginPaging, MergeStaysWithinThePerFrameCap) {
     o.max_merges_per_frame = 3;
     Fixture fx(o);
     const osg::Vec3d eye(5000, -3000, 3500), center(9000, -9000, 1000);
-    int merged_frames = 0;
-    for (int f = 0; f < 400 && !(f > 5 && fx.node->settled()); ++f) {
+    // Until the view converges (however long the workers take): then every tile it wanted was
+    // merged, at most 3 a frame.
+    int frames = 0, merged_frames = 0;
+    ASSERT_TRUE(test::waitUntil([&] {
         fx.view->frame(eye, center);
         const TerrainStats st = fx.node->stats();
         EXPECT_LE(st.last_merge_count, 3);
         merged_frames += st.last_merge_count > 0;
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    EXPECT_GT(merged_frames, 3);
-    // A time budget smaller than any merge still merges exactly one tile per frame (progress).
+        return ++frames > 5 && fx.node->settled();
+    }));
+    const uint64_t merged = fx.node->stats().tiles_merged;
+    ASSERT_GT(merged, 9u);
+    EXPECT_GE(merged_frames, static_cast<int>((merged + 2) / 3));
+    // A time budget smaller than any merge still merges exactly one tile per frame (progress). How
+    // long a merge takes is the benchmark's to measure (bench/tiles_bench: merge_ms_max), not a
+    // test's on a shared machine.
     o.merge_budget_ms = 1e-6;
     o.max_merges_per_frame = 100;
     Fixture slow(o);
-    for (int f = 0; f < 200; ++f) {
+    int slow_frames = 0, slow_merged_frames = 0;
+    ASSERT_TRUE(test::waitUntil([&] {
         slow.view->frame(eye, center);
         EXPECT_LE(slow.node->stats().last_merge_count, 1);
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+        slow_merged_frames += slow.node->stats().last_merge_count > 0;
+        return ++slow_frames > 5 && slow.node->settled();
+    }));
     EXPECT_GT(slow.node->stats().tiles_merged, 10u);
-    for (double ms : slow.node->mergeTimesMs()) EXPECT_LT(ms, 4.0);
+    EXPECT_EQ(static_cast<uint64_t>(slow_merged_frames), slow.node->stats().tiles_merged);
 }
 
 TEST(PluginPaging, MemoryStaysBoundedOnALongFlight) {
@@ -144,7 +156,9 @@ TEST(PluginPaging, MemoryStaysBoundedOnALongFlight) {
     for (int f = 0; f <= 600; ++f) {
         const osg::Vec3d eye(100.0 * f, -30000, 3000), center(100.0 * f + 3000, -30000, 1000);
         fx.view->frame(eye, center);
-        std::this_thread::sleep_for(std::chrono::milliseconds(3));
+        // Every 2 km the view converges (as long as the workers take), so the flight fills the cache
+        // however loaded the machine is; in between it flies over whatever is still loading.
+        if (f % 20 == 0) ASSERT_GE(fx.settle(eye, center), 0);
         const TerrainStats st = fx.node->stats();
         max_resident = std::max(max_resident, st.resident_bytes);
         if (f == 120) rss_after_warmup = residentKb();
@@ -224,10 +238,8 @@ TEST(PluginPaging, EditedTilesOnScreenRebuildWithoutWaitingForAFrame) {
     const size_t awaiting = fx.node->tilesAwaitingRebuild(generation);
     ASSERT_GT(awaiting, 0u) << "the edit should touch tiles on screen";
     ASSERT_LE(awaiting, static_cast<size_t>(o.max_merges_per_frame));
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    while (fx.node->stats().waiting_merge < awaiting && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    EXPECT_GE(fx.node->stats().waiting_merge, awaiting) << "rebuilds waited for a frame to be planned";
+    EXPECT_TRUE(test::waitUntil([&] { return fx.node->stats().waiting_merge >= awaiting; }))
+        << "rebuilds waited for a frame to be planned";
     fx.view->frame(eye, center);
     EXPECT_EQ(fx.node->tilesAwaitingRebuild(generation), 0u);
 }
@@ -238,43 +250,63 @@ TEST(PluginPaging, EditedTilesOnScreenRebuildWithoutWaitingForAFrame) {
 namespace terrasynth::plugin {
 namespace {
 
-// An editor drag: every frame a new edit invalidates the same tiles before their rebuilds finish.
-// Rebuilds read between two edits are still swapped in (they are newer than what is drawn), so the
-// tiles on screen follow the drag instead of waiting for it to stop; tilesAwaitingRebuild tells when
-// an edit's tiles are on screen.
+// An editor drag: a new edit invalidates the same tiles before the previous edit's rebuilds reached
+// the screen. Rebuilds read between two edits are still swapped in (they are newer than what is
+// drawn), so the tiles on screen follow the drag instead of waiting for it to stop;
+// tilesAwaitingRebuild tells when an edit's tiles are on screen. The order is forced rather than
+// hoped for from timing: each edit's rebuilds have finished (not merged) when the next edit comes,
+// and the next edit's source is held shut until the previous edit is on screen, so only those
+// rebuilds can have brought it there, however loaded the machine.
 TEST(PluginPaging, ContinuousEditsStillReachTheScreen) {
     TerrainNodeOptions o = smallTiles();
-    o.threads = 1;  // rebuilds slower than the edits come
+    o.threads = 1;
+    o.merge_budget_ms = 1e9;  // only the count caps a frame's merges
     Fixture fx(o, "orom_rockies");
+    // Opened on every way out, so no worker is left waiting on a gate when the fixture goes.
+    struct Gate {
+        std::shared_ptr<std::atomic<bool>> open = std::make_shared<std::atomic<bool>>(true);
+        ~Gate() { *open = true; }
+    } gate;
     const osg::Vec3d eye(15000, -15000, 5000), center(22000, -22000, 1500);
     ASSERT_GE(fx.settle(eye, center), 0);
-    const PixelWindow edit{220, 220, 60, 60};
-    std::vector<uint64_t> generations;
-    std::vector<int> resolved_at;  // frame at which each edit's drawn tiles were all rebuilt
+    const PixelWindow edit{240, 240, 16, 16};
     const TerrainStats before = fx.node->stats();
-    constexpr int kEdits = 40;
-    for (int f = 0; f < kEdits; ++f) {
-        const float raise = 10.0f * static_cast<float>(f + 1);
-        fx.node->setHeightSource(editedSource(fx.source, [edit, raise](const PixelWindow& w, int level, Heightfield& h) {
+    // A held source reads nothing until the gate opens.
+    auto source = [&](float raise, bool held) {
+        std::shared_ptr<std::atomic<bool>> open;
+        if (held) *(open = gate.open) = false;
+        return editedSource(fx.source, [edit, raise, open](const PixelWindow& w, int level, Heightfield& h) {
+            if (open) EXPECT_TRUE(test::waitUntil([&] { return open->load(); })) << "the gate stayed shut";
             raiseBlock(edit, raise, w, level, h);
-            std::this_thread::sleep_for(std::chrono::milliseconds(3));  // a slow source
-        }));
-        generations.push_back(fx.node->invalidate(edit, 0));
-        resolved_at.push_back(-1);
-        fx.view->frame(eye, center);
-        for (size_t g = 0; g < generations.size(); ++g)
-            if (resolved_at[g] < 0 && fx.node->tilesAwaitingRebuild(generations[g]) == 0) resolved_at[g] = f;
-        std::this_thread::sleep_for(std::chrono::milliseconds(15));
+        });
+    };
+    constexpr int kDrags = 5;
+    for (int d = 0; d < kDrags; ++d) {
+        const float raise = 20.0f * static_cast<float>(2 * d + 1);
+        fx.node->setHeightSource(source(raise, false));
+        const uint64_t first = fx.node->invalidate(edit, 0);
+        const size_t awaiting = fx.node->tilesAwaitingRebuild(first);
+        ASSERT_GT(awaiting, 0u) << "the edit should touch tiles on screen";
+        ASSERT_LE(awaiting, static_cast<size_t>(o.max_merges_per_frame));
+        // The first edit's rebuilds start at once (those drawn first) and finish with no frame drawn.
+        ASSERT_TRUE(test::waitUntil([&] { return fx.node->stats().waiting_merge >= awaiting; }, std::chrono::minutes(2)));
+        // The next edit of the drag comes before any frame has shown the first.
+        fx.node->setHeightSource(source(raise + 20.0f, true));
+        const uint64_t next = fx.node->invalidate(edit, 0);
+        EXPECT_GT(fx.node->tilesAwaitingRebuild(first), 0u);
+        // Frames swap in what was read for the first edit, while the next one's reads are held.
+        EXPECT_TRUE(test::waitUntil([&] {
+            fx.view->frame(eye, center);
+            return fx.node->tilesAwaitingRebuild(first) == 0;
+        }, std::chrono::minutes(2))) << "drag " << d << ": the edit reached the screen only after the drag stopped";
+        EXPECT_GT(fx.node->tilesAwaitingRebuild(next), 0u) << "drag " << d << ": the next edit was not held";
+        // Released, the next edit reaches the screen as well.
+        *gate.open = true;
+        ASSERT_GE(fx.settle(eye, center), 0);
+        EXPECT_EQ(fx.node->tilesAwaitingRebuild(next), 0u);
     }
-    int during = 0;
-    for (int g = 0; g < kEdits; ++g) during += resolved_at[static_cast<size_t>(g)] >= 0;
-    std::printf("%d of %d edits reached the screen during the drag\n", during, kEdits);
-    EXPECT_GT(during, kEdits / 4) << "edits only reached the screen after the drag stopped";
     EXPECT_GT(fx.node->stats().tiles_swapped, before.tiles_swapped);
     EXPECT_GT(fx.node->stats().tiles_invalidated, before.tiles_invalidated);
-    // Once the edits stop, everything settles on the last one.
-    ASSERT_GE(fx.settle(eye, center), 0);
-    EXPECT_EQ(fx.node->tilesAwaitingRebuild(generations.back()), 0u);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "worker_pool.h"
+#include "wait_until.h"
 
 namespace terrasynth::plugin {
 namespace {
@@ -37,25 +38,30 @@ TEST(PluginPool, RunsBestPriorityFirstAndDropsReplacedTasks) {
 
 TEST(PluginPool, UsesAllThreadsAndFinishesStartedWork) {
     std::atomic<int> running{0}, peak{0}, done{0};
+    std::atomic<bool> started{false};
     {
         WorkerPool pool(2);
         EXPECT_EQ(pool.threadCount(), 2);
+        // Each task stays until two run at once (or a deadline of minutes, shared by all, passes):
+        // with both threads in use that happens whatever the machine's load; with one it never does.
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
         for (int i = 0; i < 8; ++i)
             pool.push({double(i), [&] {
                            const int now = ++running;
                            int p = peak;
                            while (now > p && !peak.compare_exchange_weak(p, now)) {}
-                           std::this_thread::sleep_for(std::chrono::milliseconds(10));
+                           test::waitUntil([&] { return peak >= 2; }, deadline - std::chrono::steady_clock::now());
                            --running;
                            ++done;
                        }});
         pool.waitIdle();
         EXPECT_EQ(done, 8);
         pool.push({0.0, [&] {
-                       std::this_thread::sleep_for(std::chrono::milliseconds(30));
+                       started = true;
+                       std::this_thread::sleep_for(std::chrono::milliseconds(30));  // still running at the destructor
                        ++done;
                    }});
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        ASSERT_TRUE(test::waitUntil([&] { return started.load(); }));
     }  // the destructor waits for the started task
     EXPECT_EQ(peak, 2);
     EXPECT_EQ(done, 9);

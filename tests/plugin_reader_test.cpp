@@ -10,6 +10,7 @@
 #include <osgDB/ReadFile>
 #include <osgDB/Registry>
 
+#include "terrasynth/database.h"
 #include "terrasynth/project.h"
 #include "terrasynth_plugin/plugin_options.h"
 #include "terrasynth_plugin/terrain_node.h"
@@ -25,6 +26,17 @@ osgDB::ReaderWriter* tsynReader() {
     }();
     (void)path_set;
     return osgDB::Registry::instance()->getReaderWriterForExtension("tsyn");
+}
+
+// Stock osgconv converts <dir>/world.tsyn with `options` into <dir>/out.osgb, which reads back
+// with tiles in it.
+void expectOsgconvWrites(const std::string& dir, const std::string& options) {
+    const std::string cmd = std::string("OSG_LIBRARY_PATH='") + TERRASYNTH_TEST_OSG_LIBRARY_PATH + "' osgconv -O '" +
+                            options + "' '" + dir + "/world.tsyn' '" + dir + "/out.osgb' > '" + dir + "/osgconv.log' 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << test::readFile(dir + "/osgconv.log");
+    osg::ref_ptr<osg::Node> written = osgDB::readRefNodeFile(dir + "/out.osgb");
+    ASSERT_TRUE(written.valid());
+    EXPECT_GT(written->asGroup()->getNumChildren(), 0u);
 }
 
 TEST(PluginReader, LoadsForTheTsynExtension) {
@@ -72,6 +84,20 @@ TEST(PluginReader, BadOptionValuesAreReportedByName) {
         auto p = parsePluginOptions(bad);
         EXPECT_FALSE(p) << bad;
     }
+    // NaN and infinity passed the range checks: skirt=inf wrote 1281 vertices at z = -inf through
+    // osgconv. Each is refused, naming the option, and the reader answers an error, not a node.
+    for (const char* bad : {"skirt=inf", "sunElevation=nan", "sunAzimuth=inf", "snowLine=nan", "pixelError=nan",
+                            "viewRadius=inf", "fog=nan", "mergeBudgetMs=-inf"}) {
+        auto p = parsePluginOptions(bad);
+        ASSERT_FALSE(p) << bad;
+        const std::string name = std::string(bad).substr(0, std::string(bad).find('='));
+        EXPECT_NE(p.message().find("option " + name + "="), std::string::npos) << p.message();
+        EXPECT_NE(p.message().find("finite"), std::string::npos) << p.message();
+    }
+    osg::ref_ptr<osgDB::Options> infinite_skirt = new osgDB::Options("skirt=inf");
+    auto refused = rw->readNode(path, infinite_skirt.get());
+    EXPECT_EQ(refused.status(), osgDB::ReaderWriter::ReadResult::ERROR_IN_READING_FILE);
+    EXPECT_NE(refused.message().find("skirt"), std::string::npos) << refused.message();
 }
 
 TEST(PluginReader, ReadsAProjectAndOsgconvWritesIt) {
@@ -121,13 +147,44 @@ TEST(PluginReader, ReadsAProjectAndOsgconvWritesIt) {
     EXPECT_TRUE(rw->readObject(dir + "/world.tsyn", opts.get()).success());
 
     // The stock converter, finding the plugin through OSG_LIBRARY_PATH.
-    const std::string cmd = std::string("OSG_LIBRARY_PATH='") + TERRASYNTH_TEST_OSG_LIBRARY_PATH +
-                            "' osgconv -O 'tileSize=64 maxLevel=3 threads=2' '" + dir + "/world.tsyn' '" + dir +
-                            "/out.osgb' > '" + dir + "/osgconv.log' 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << "see " << dir << "/osgconv.log";
-    osg::ref_ptr<osg::Node> written = osgDB::readRefNodeFile(dir + "/out.osgb");
-    ASSERT_TRUE(written.valid());
-    EXPECT_GT(written->asGroup()->getNumChildren(), 0u);
+    expectOsgconvWrites(dir, "tileSize=64 maxLevel=3 threads=2");
+}
+
+TEST(PluginReader, MaxLevelIsClampedToAPrebuiltDatabasesLevels) {
+    // A valid project over a prebuilt 3-level database (levels 0..2) failed in osgconv with
+    // "preload: tile 5/0/0: output level must be 0..2": the default maxLevel was clamped to the
+    // project's database_levels (6 when the project does not say) instead of the database's.
+    const std::string dir = test::scratchDir("plugin_reader_prebuilt");
+    DatabaseBuildOptions build;
+    build.levels = 2;
+    build.threads = 2;
+    auto db = buildDatabase({test::dataDir() + "/exemplars/orom_alaska.png"}, build);
+    ASSERT_TRUE(db) << db.message();
+    ASSERT_EQ(db.value()->levelCount(), 3);
+    ASSERT_TRUE(saveDatabase(**db, dir + "/three.tsdb"));
+    Project p;
+    p.database = dir + "/three.tsdb";
+    p.width = p.height = 256;
+    ASSERT_TRUE(saveProject(p, dir + "/world.tsyn"));
+    ASSERT_EQ(loadProject(dir + "/world.tsyn")->database_levels, 6) << "the scenario needs the default";
+
+    osgDB::ReaderWriter* rw = tsynReader();
+    ASSERT_NE(rw, nullptr);
+    osg::ref_ptr<osgDB::Options> opts = new osgDB::Options("tileSize=64 threads=2");
+    auto r = rw->readNode(dir + "/world.tsyn", opts.get());
+    ASSERT_TRUE(r.success()) << r.message();
+    auto* terrain = dynamic_cast<TerrainNode*>(r.getNode());
+    ASSERT_NE(terrain, nullptr);
+    EXPECT_EQ(terrain->options().max_level, 2);
+    EXPECT_GT(terrain->getNumChildren(), 0u);
+
+    // Given explicitly past the database, maxLevel is refused with the level range named.
+    osg::ref_ptr<osgDB::Options> too_deep = new osgDB::Options("tileSize=64 threads=2 maxLevel=5");
+    auto refused = rw->readNode(dir + "/world.tsyn", too_deep.get());
+    EXPECT_FALSE(refused.success());
+    EXPECT_NE(refused.message().find("0..2"), std::string::npos) << refused.message();
+
+    expectOsgconvWrites(dir, "tileSize=64 threads=2");
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "terrasynth_host/hole_check.h"
 #include "terrasynth_plugin/terrain_node.h"
 #include "test_support.h"
+#include "wait_until.h"
 
 namespace terrasynth::plugin {
 namespace {
@@ -63,13 +64,16 @@ void runFlight() {
                                 osg::Vec3d(0, 0, -std::sin(osg::DegreesToRadians(kPitchDeg)));
         cam->setViewMatrixAsLookAt(eye, eye + look, osg::Vec3d(0, 0, 1));
         // At the start wait for the roots; afterwards keep flying whatever is still loading, with a
-        // few settled pauses so that fully refined views are checked too.
-        const bool pause = s == 0 || s % 10 == 0;
-        for (int f = 0; f < (pause ? 400 : 2); ++f) {
-            viewer.frame();
-            ++frames;
-            if (pause && f > 3 && terrain->settled()) break;
-            if (pause) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        // few settled pauses (as long as the workers take) so that fully refined views are checked too.
+        if (s == 0 || s % 10 == 0) {
+            int paused = 0;
+            EXPECT_TRUE(test::waitUntil([&] {
+                viewer.frame();
+                ++frames;
+                return ++paused > 4 && terrain->settled();
+            }, std::chrono::minutes(10), std::chrono::milliseconds(5))) << "step " << s << ": the view never converged";
+        } else {
+            for (int f = 0; f < 2; ++f, ++frames) viewer.frame();
         }
         const TerrainStats st = terrain->stats();
         ASSERT_GT(st.drawn_tiles, 0u);

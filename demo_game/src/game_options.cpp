@@ -15,6 +15,8 @@
 #include "terrasynth/database.h"
 #include "terrasynth/heightfield_io.h"
 #include "opencl_check.h"
+#include "terrasynth/checked_number.h"
+#include "terrasynth_cli/flag_checks.h"
 #include "terrasynth_plugin/plugin_options.h"
 
 namespace terrasynth::game {
@@ -32,17 +34,14 @@ Status parseSize(const std::string& text, int* width, int* height) {
     return Status::ok();
 }
 
-Status parsePair(const std::string& flag, const std::string& text, double* a, double* b) {
-    char* end = nullptr;
-    errno = 0;
-    const double x = std::strtod(text.c_str(), &end);
-    if (errno || end == text.c_str() || *end != ',') return Status::error(flag + " " + text + ": expected X,Y");
-    const char* second = end + 1;
-    const double y = std::strtod(second, &end);
-    if (errno || end == second || *end || !std::isfinite(x) || !std::isfinite(y))
-        return Status::error(flag + " " + text + ": expected X,Y");
-    *a = x;
-    *b = y;
+Status parsePair(const std::string& flag, const std::string& text, double* a, double* b, double bound) {
+    const size_t comma = text.find(',');
+    if (comma == std::string::npos) return Status::error(flag + " " + text + ": expected X,Y");
+    auto x = parseFiniteNumber(text.substr(0, comma), -bound, bound);
+    auto y = parseFiniteNumber(text.substr(comma + 1), -bound, bound);
+    if (!x || !y) return Status::error(flag + " " + text + ": expected X,Y, each " + finiteRangeText(-bound, bound));
+    *a = *x;
+    *b = *y;
     return Status::ok();
 }
 
@@ -53,7 +52,7 @@ std::optional<GameOptions> parseGameOptions(int argc, char** argv, std::optional
     CLI::App app{"terrasynth_game: fly over an endless world synthesized from a seed while you fly"};
     std::string start, size = "1280x720", backend = "opencl";
     uint32_t seed = 0;
-    auto* seed_opt = app.add_option("--seed", seed, "World seed (default: the project's)");
+    auto* seed_opt = app.add_option("--seed", seed, "World seed (default: the project's)")->check(cli::FiniteRange(0, 4294967295.0));
     app.add_option("--project", o.project_path, "Project (.tsyn) whose exemplars and settings to use")
         ->capture_default_str();
     auto* start_opt = app.add_option("--start", start, "Start position X,Y in km (x east, y north)");
@@ -62,22 +61,22 @@ std::optional<GameOptions> parseGameOptions(int argc, char** argv, std::optional
         ->check(CLI::IsMember({"opencl", "reference"}))
         ->capture_default_str();
     app.add_option("--autopilot", o.autopilot_s, "Fly terrain-following for this many seconds, then quit")
-        ->check(CLI::Range(0.0, 1e6));
+        ->check(cli::FiniteRange(0.0, 1e6));
     app.add_option("--fixed-dt", o.fixed_dt_s, "Deterministic steps of this many simulated seconds per frame")
         ->expected(0, 1)
         ->default_str("0.0333")
-        ->check(CLI::Range(0.001, 1.0));
+        ->check(cli::FiniteRange(0.001, 1.0));
     app.add_option("--screenshot-every", o.screenshot_every, "Save a screenshot every N frames (N steps with --fixed-dt: the settled 3D view); needs --out")
-        ->check(CLI::Range(1, 1000000));
+        ->check(cli::FiniteRange(1, 1000000));
     app.add_option("--out", o.out_dir, "Folder for screenshots");
     app.add_option("--stats", o.stats_path, "Write frame timings and flight statistics (JSON) at exit");
     app.add_option("--terrain-options", o.terrain_options,
                    "Terrain options as for osgviewer -O, e.g. \"pixelError=12 meshStep=2\"");
     app.add_option("--check-holes", o.check_holes_every, "Count hole pixels every N frames (sky drawn magenta)")
-        ->check(CLI::Range(1, 1000000));
+        ->check(cli::FiniteRange(1, 1000000));
     app.add_flag("--replay", o.replay, "After the flight, redraw its camera path with every tile resident");
     app.add_option("--heading", o.heading_deg, "Autopilot course in degrees clockwise from north")
-        ->check(CLI::Range(-360.0, 360.0));
+        ->check(cli::FiniteRange(-360.0, 360.0));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -98,7 +97,7 @@ std::optional<GameOptions> parseGameOptions(int argc, char** argv, std::optional
     if (*seed_opt) o.seed = seed;
     if (Status s = parseSize(size, &o.width, &o.height); !s) return fail(s);
     if (*start_opt) {
-        if (Status s = parsePair("--start", start, &o.start_x_km, &o.start_y_km); !s) return fail(s);
+        if (Status s = parsePair("--start", start, &o.start_x_km, &o.start_y_km, kMaxStartKm); !s) return fail(s);
         o.start_given = true;
     }
     o.backend = backend == "reference" ? SynthesisBackend::Reference : SynthesisBackend::OpenCL;

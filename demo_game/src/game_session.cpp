@@ -177,8 +177,7 @@ bool Session::makeWorld(std::shared_ptr<Terrain> terrain) {
     stats_.device = o_.backend == SynthesisBackend::OpenCL ? "opencl" : "reference";
 
     plugin::PluginOptions po = *plugin::parsePluginOptions(gameTerrainOptions(o_));  // checked before the window
-    if (!po.max_level_given)
-        po.node.max_level = std::max(po.node.min_level, std::min(po.node.max_level, terrain->project().database_levels - 1));
+    if (!po.max_level_given) po.node.max_level = plugin::clampedMaxLevel(po.node, terrain->database().levelCount());
     w.node = new plugin::TerrainNode(w.source, w.mpp, po.node);
     plugin::TerrainLook look = start_heights_ ? plugin::lookForHeightRange(start_heights_->first, start_heights_->second)
                                               : plugin::TerrainLook{};

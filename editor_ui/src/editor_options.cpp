@@ -4,11 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <system_error>
 
 #include <CLI/CLI.hpp>
 
+#include "terrasynth/checked_number.h"
+#include "terrasynth/file_transaction.h"
+#include "terrasynth_cli/flag_checks.h"
 #include "terrasynth_plugin/plugin_options.h"
 
 namespace terrasynth::editor {
@@ -26,15 +28,16 @@ Status parseSizeText(const std::string& text, int* w, int* h) {
 }
 
 Status parseColour(const std::string& text, float* rgb) {
-    std::istringstream in(text);
+    const Status bad = Status::error("--clear-color: expected R,G,B, each " + finiteRangeText(0, 1) + ", got '" + text + "'");
+    size_t at = 0;
     for (int i = 0; i < 3; ++i) {
-        double v = -1;
-        in >> v;
-        if (!in || v < 0.0 || v > 1.0) return Status::error("--clear-color: expected R,G,B in [0, 1], got '" + text + "'");
-        rgb[i] = static_cast<float>(v);
-        if (i < 2 && in.get() != ',') return Status::error("--clear-color: expected R,G,B in [0, 1], got '" + text + "'");
+        const size_t comma = i < 2 ? text.find(',', at) : text.size();
+        if (comma == std::string::npos) return bad;
+        auto v = parseFiniteNumber(text.substr(at, comma - at), 0.0, 1.0);
+        if (!v) return bad;
+        rgb[i] = static_cast<float>(*v);
+        at = comma + 1;
     }
-    if (in.peek() != std::char_traits<char>::eof()) return Status::error("--clear-color: expected R,G,B in [0, 1], got '" + text + "'");
     return Status::ok();
 }
 
@@ -51,10 +54,10 @@ Result<EditorOptions> parseEditorOptions(int argc, const char* const* argv, std:
     app.add_option("--size", size, "Window size WxH (default 1280x720)");
     app.add_option("--backend", backend, "Synthesis backend: opencl or reference");
     app.add_option("--clear-color", colour, "Background colour R,G,B in [0, 1]");
-    app.add_option("--ui-scale", o.ui_scale, "Panel scale")->check(CLI::Range(0.5, 4.0));
+    app.add_option("--ui-scale", o.ui_scale, "Panel scale")->check(cli::FiniteRange(0.5, 4.0));
     app.add_option("--drag-preview-levels", o.drag_preview_levels,
                    "Finest levels a drag shows uncorrected until release (0 = full quality every step; default 1)")
-        ->check(CLI::Range(0, 2));
+        ->check(cli::FiniteRange(0, 2));
     app.add_option("--terrain-options", o.terrain_options,
                    "Terrain settings in the plugin's syntax, e.g. \"tileSize=128 pixelError=6\"");
     try {
@@ -67,6 +70,9 @@ Result<EditorOptions> parseEditorOptions(int argc, const char* const* argv, std:
     }
     if (!size.empty())
         if (Status s = parseSizeText(size, &o.width, &o.height); !s) return s;
+    // Written at exit, so checked now (as the game does): a run must not end in a failed write.
+    if (!o.stats.empty())
+        if (Status s = FileTransaction::checkTarget(o.stats); !s) return s.withContext("--stats");
     if (!colour.empty())
         if (Status s = parseColour(colour, o.clear_color); !s) return s;
     auto terrain = plugin::parsePluginOptions(std::string(kTerrainDefaults) + " " + o.terrain_options);

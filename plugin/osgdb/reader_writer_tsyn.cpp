@@ -115,15 +115,15 @@ private:
         auto project = loadProject(path);
         if (!project) return ReadResult(project.message());
         if (opts.seed) project->synthesis.seed = *opts.seed;
-        if (!opts.max_level_given)
-            opts.node.max_level = std::max(opts.node.min_level,
-                                           std::min(opts.node.max_level, project->database_levels - 1));
         TerrainOptions terrain_options;
         terrain_options.synthesizer = opts.synthesizer;
         terrain_options.on_warning = [](const std::string& warning) { OSG_WARN << "terrasynth: " << warning << std::endl; };
         auto terrain = Terrain::fromProject(*project, terrain_options);
         if (!terrain) return ReadResult(path + ": " + terrain.message());
         std::shared_ptr<Terrain> shared = *terrain;
+        // Clamped to the database loaded, not to the project's database_levels: a prebuilt
+        // database has the levels it has, whatever the project says.
+        if (!opts.max_level_given) opts.node.max_level = clampedMaxLevel(opts.node, shared->database().levelCount());
 
         HeightSource source = [shared](const PixelWindow& w, int level) { return shared->heights(w, level); };
         osg::ref_ptr<TerrainNode> node = new TerrainNode(source, shared->metersPerPixel(0), opts.node);

@@ -6,6 +6,9 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "terrasynth/checked_number.h"
+#include "terrasynth/limits.h"
+
 namespace terrasynth::plugin {
 namespace {
 
@@ -23,15 +26,6 @@ bool parseInt(const std::string& v, long long lo, long long hi, long long& out) 
     return true;
 }
 
-bool parseDouble(const std::string& v, double& out) {
-    errno = 0;
-    char* end = nullptr;
-    const double x = std::strtod(v.c_str(), &end);
-    if (errno || end == v.c_str() || *end) return false;
-    out = x;
-    return true;
-}
-
 }  // namespace
 
 Result<PluginOptions> parsePluginOptions(const std::string& option_string) {
@@ -44,11 +38,17 @@ Result<PluginOptions> parsePluginOptions(const std::string& option_string) {
         const size_t eq = token.find('=');
         if (eq == std::string::npos) continue;
         const std::string key = lower(token.substr(0, eq)), value = token.substr(eq + 1);
-        auto bad = [&](const char* expect) {
+        auto bad = [&](const std::string& expect) {
             return Status::error("option " + token.substr(0, eq) + "=" + value + ": expected " + expect);
         };
-        long long i = 0;
+        // Every number through the check the command-line flags use: finite, in [lo, hi].
         double d = 0.0;
+        auto number = [&](double lo, double hi) {
+            auto parsed = parseFiniteNumber(value, lo, hi);
+            if (parsed) d = *parsed;
+            return parsed.isOk();
+        };
+        long long i = 0;
         if (key == "tilesize") {
             if (!parseInt(value, 8, 2048, i)) return bad("an integer in [8, 2048]");
             o.node.tile_size = static_cast<int>(i);
@@ -63,25 +63,25 @@ Result<PluginOptions> parsePluginOptions(const std::string& option_string) {
             if (!parseInt(value, 1, 1024, i)) return bad("an integer in [1, 1024]");
             o.node.mesh_step = static_cast<int>(i);
         } else if (key == "pixelerror") {
-            if (!parseDouble(value, d) || !(d > 0.0)) return bad("a number > 0");
+            if (!number(0.01, 1e4)) return bad(finiteRangeText(0.01, 1e4));
             o.node.pixel_error = static_cast<float>(d);
         } else if (key == "viewradius") {
-            if (!parseDouble(value, d) || !(d >= 0.0)) return bad("metres >= 0");
+            if (!number(0, 1e9)) return bad("metres, " + finiteRangeText(0, 1e9));
             o.node.view_radius_m = d;
         } else if (key == "threads") {
             if (!parseInt(value, 0, 256, i)) return bad("an integer in [0, 256]");
             o.node.threads = static_cast<int>(i);
         } else if (key == "cachemb") {
-            if (!parseDouble(value, d) || !(d > 0.0)) return bad("MiB > 0");
+            if (!number(1, 1e7)) return bad("MiB, " + finiteRangeText(1, 1e7));
             o.node.cache_mb = d;
         } else if (key == "mergesperframe") {
             if (!parseInt(value, 1, 100000, i)) return bad("an integer >= 1");
             o.node.max_merges_per_frame = static_cast<int>(i);
         } else if (key == "mergebudgetms") {
-            if (!parseDouble(value, d) || !(d > 0.0)) return bad("milliseconds > 0");
+            if (!number(1e-3, 1e4)) return bad("milliseconds, " + finiteRangeText(1e-3, 1e4));
             o.node.merge_budget_ms = d;
         } else if (key == "skirt") {
-            if (!parseDouble(value, d) || !(d >= 0.0)) return bad("a number >= 0");
+            if (!number(0, 1000)) return bad("sample spacings, " + finiteRangeText(0, 1000));
             o.node.skirt_extra_spacings = static_cast<float>(d);
         } else if (key == "seed") {
             if (!parseInt(value, 0, 0xffffffffll, i)) return bad("an unsigned 32-bit integer");
@@ -100,16 +100,17 @@ Result<PluginOptions> parsePluginOptions(const std::string& option_string) {
             if (!parseInt(value, 0, 1, i)) return bad("0 or 1");
             o.preload = i != 0;
         } else if (key == "sunazimuth") {
-            if (!parseDouble(value, d)) return bad("degrees");
+            if (!number(-360, 360)) return bad("degrees, " + finiteRangeText(-360, 360));
             o.sun_azimuth_deg = static_cast<float>(d);
         } else if (key == "sunelevation") {
-            if (!parseDouble(value, d) || d < 0.0 || d > 90.0) return bad("degrees in [0, 90]");
+            if (!number(0, 90)) return bad("degrees, " + finiteRangeText(0, 90));
             o.sun_elevation_deg = static_cast<float>(d);
         } else if (key == "snowline") {
-            if (!parseDouble(value, d)) return bad("metres");
+            if (!number(-limits::kMaxAbsHeightM, limits::kMaxAbsHeightM))
+                return bad("metres, " + finiteRangeText(-limits::kMaxAbsHeightM, limits::kMaxAbsHeightM));
             o.snow_line_m = static_cast<float>(d);
         } else if (key == "fog") {
-            if (!parseDouble(value, d) || d < 0.0) return bad("metres >= 0");
+            if (!number(0, 1e9)) return bad("metres, " + finiteRangeText(0, 1e9));
             o.fog_m = static_cast<float>(d);
         } else if (key == "typecolors") {
             if (!parseInt(value, 0, 1, i)) return bad("0 or 1");

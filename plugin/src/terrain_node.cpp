@@ -4,6 +4,7 @@
 #include "terrasynth_plugin/terrain_node.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <thread>
 
@@ -20,16 +21,20 @@ Status validateOptions(const TerrainNodeOptions& o) {
     if (o.min_level < 0 || o.min_level > 20) return bad("minLevel", "must be in [0, 20]");
     if (o.max_level < o.min_level || o.max_level > 20) return bad("maxLevel", "must be in [minLevel, 20]");
     if (o.mesh_step < 1 || o.tile_size % o.mesh_step != 0) return bad("meshStep", "must divide tileSize");
-    if (!(o.pixel_error > 0.0f)) return bad("pixelError", "must be > 0");
-    if (!(o.view_radius_m >= 0.0)) return bad("viewRadius", "must be >= 0 (0 = one root tile)");
+    if (!(o.pixel_error > 0.0f) || !std::isfinite(o.pixel_error)) return bad("pixelError", "must be finite and > 0");
+    if (!(o.view_radius_m >= 0.0) || !std::isfinite(o.view_radius_m)) return bad("viewRadius", "must be finite and >= 0 (0 = one root tile)");
     if (o.threads < 0 || o.threads > 256) return bad("threads", "must be in [0, 256]");
-    if (!(o.cache_mb > 0.0)) return bad("cacheMB", "must be > 0");
+    if (!(o.cache_mb > 0.0) || !std::isfinite(o.cache_mb)) return bad("cacheMB", "must be finite and > 0");
     if (o.max_merges_per_frame < 1) return bad("mergesPerFrame", "must be >= 1");
     if (!(o.merge_budget_ms > 0.0)) return bad("mergeBudgetMs", "must be > 0");
-    if (!(o.skirt_extra_spacings >= 0.0f)) return bad("skirt", "must be >= 0");
+    if (!(o.skirt_extra_spacings >= 0.0f) || !std::isfinite(o.skirt_extra_spacings)) return bad("skirt", "must be finite and >= 0");
     if (o.geomorph && (o.tile_size / o.mesh_step) % 2 != 0)
         return bad("geomorph", "needs an even tileSize / meshStep");
     return Status::ok();
+}
+
+int clampedMaxLevel(const TerrainNodeOptions& o, int database_levels) {
+    return std::max(o.min_level, std::min(o.max_level, database_levels - 1));
 }
 
 TerrainNode::TerrainNode(HeightSource source, double meters_per_pixel, const TerrainNodeOptions& options)

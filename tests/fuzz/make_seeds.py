@@ -3,7 +3,7 @@
 shipped exemplars in data/ and the JSON examples in docs/. Inputs found by fuzzing are kept beside
 them (crash_*, slow_* or libFuzzer's hash names); this script only rewrites seed_* files.
 
-  /usr/bin/python3 tests/fuzz/make_seeds.py build/bin/terrasynth
+  /usr/bin/python3 tests/fuzz/make_seeds.py build/bin/terrasynth [exemplar|database|project|cli_flags|edit_sidecar ...]
 
 Needs numpy and PIL (Debian python3-numpy, python3-pil) and a built terrasynth for the database seeds.
 """
@@ -138,7 +138,63 @@ def cli_seeds():
         write("cli_flags", f"command_{i}", c)
 
 
-exemplar_seeds()
-database_seeds()
-project_seeds()
-cli_seeds()
+def sidecar_file(extent, heights, frozen, history=(), lifts=(), tilts=(), curve_lifts=(), digest="0123456789abcdef",
+                 header_extra=None, checksum=True):
+    """An edited-heights sidecar as project/edit_sidecar.cpp writes it: magic, version, header JSON,
+    blobs, FNV-1a of everything before (left off when checksum is False: the target appends it)."""
+    blobs, body = [], b""
+    def blob(name, data):
+        nonlocal body
+        blobs.append({"name": name, "bytes": len(data)})
+        body += data
+    blob("heights", struct.pack(f"<{len(heights)}f", *heights))
+    blob("frozen", bytes(frozen))
+    levels = []
+    for (x, y, w, h, passes) in history:
+        levels.append([x, y, w, h, len(passes)])
+        for index, v in passes:
+            blob("history.index", struct.pack(f"<{len(index)}I", *index))
+            blob("history.v", struct.pack(f"<{len(v)}f", *v))
+    header = {"format": "terrasynth-edited-heights", "digest": digest, "extent": list(extent), "lifts": list(lifts),
+              "tilts": [list(t) for t in tilts], "curve_lifts": [list(c) for c in curve_lifts], "history": levels,
+              "reference": {"constraints": {}, "masks": [], "lifts": [], "tilts": [], "curve_lifts": []}, "blobs": blobs}
+    if isinstance(header_extra, bytes):
+        text = header_extra
+    else:
+        header.update(header_extra or {})
+        text = json.dumps(header, separators=(",", ":")).encode()
+    out = b"TSYNEDIT" + struct.pack("<IQ", 1, len(text)) + text + body
+    if checksum:
+        h = 1469598103934665603
+        for c in out:
+            h = ((h ^ c) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+        out += struct.pack("<Q", h)
+    return out
+
+
+def sidecar_seeds():
+    # Mode 2 with no edits: the target's own real sidecar of a small session (it restores).
+    write("edit_sidecar", "real_session", b"\2")
+    write("edit_sidecar", "real_session_edited", b"\2" + bytes([40, 0, 0x7b, 200, 1, 0xff, 0, 2, 0x30]))
+    extent, n = (-8, 4, 4, 3), 12
+    heights = [800.0 + 5 * i for i in range(n)]
+    plain = dict(extent=extent, heights=heights, frozen=[0] * n, checksum=False)
+    write("edit_sidecar", "small", b"\1" + sidecar_file(**plain, lifts=[1.5], tilts=[(0.1, -0.2)], curve_lifts=[[0, 2, 1]]))
+    write("edit_sidecar", "small_whole", b"\0" + sidecar_file(**dict(plain, checksum=True)))
+    write("edit_sidecar", "history_level", b"\1" + sidecar_file(**plain, history=[(-4, 2, 2, 2, [([0, 1, 2, 3], [0.0] * 4)])]))
+    # The hostile cases of issue 37: each must be refused, never crash.
+    write("edit_sidecar", "deep_header", b"\1" + sidecar_file(**dict(plain, header_extra=b"[" * 1000 + b"]" * 1000)))
+    write("edit_sidecar", "deep_lifts", b"\1" + sidecar_file(**plain, header_extra={"lifts": json.loads("[" * 60 + "]" * 60)}))
+    write("edit_sidecar", "digest_not_hex", b"\1" + sidecar_file(**plain, digest="zz23456789abcdef"))
+    write("edit_sidecar", "nan_heights", b"\1" + sidecar_file(**dict(plain, heights=[float("nan")] + heights[1:])))
+    write("edit_sidecar", "frozen_not_binary", b"\1" + sidecar_file(**dict(plain, frozen=[7] + [0] * (n - 1))))
+    write("edit_sidecar", "atlas_index_past_atlas",
+          b"\1" + sidecar_file(**plain, history=[(-4, 2, 2, 2, [([0xfffffff0] * 4, [0.0] * 4)])]))
+    write("edit_sidecar", "truncated", b"\0" + sidecar_file(**dict(plain, checksum=True))[:-30])
+
+
+# `make_seeds.py CLI [target ...]`: only the named targets' seeds (default: every target).
+seeders = {"exemplar": exemplar_seeds, "database": database_seeds, "project": project_seeds, "cli_flags": cli_seeds,
+           "edit_sidecar": sidecar_seeds}
+for name in sys.argv[2:] or list(seeders):
+    seeders[name]()

@@ -54,8 +54,11 @@ Result<Project> checkBeforeWindow(const GameOptions& options);
 // process under 1 GB: tileSize=64 pixelError=10 viewRadius=200000 cacheMB=384.
 std::string gameTerrainOptions(const GameOptions& options);
 
-// "WxH" -> (W, H) in [160, 8192]; "X,Y" -> (X, Y). Errors name the flag.
+// "WxH" -> (W, H) in [160, 8192]; "X,Y" -> (X, Y), each finite within +-bound. Errors name the flag.
 Status parseSize(const std::string& text, int* width, int* height);
-Status parsePair(const std::string& flag, const std::string& text, double* x, double* y);
+Status parsePair(const std::string& flag, const std::string& text, double* x, double* y, double bound);
+// --start's bound: 10^5 km each way, inside the grid synthesis serves (+-2^28 pixels) at any
+// spacing from 0.4 m up, so the world under the start is one the synthesizer can make.
+constexpr double kMaxStartKm = 1e5;
 
 }  // namespace terrasynth::game

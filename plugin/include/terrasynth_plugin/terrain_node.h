@@ -78,8 +78,11 @@ struct TerrainNodeOptions {
     bool geomorph = true;
 };
 
-// Checks ranges; the message names the option.
+// Checks ranges (numbers finite); the message names the option.
 Status validateOptions(const TerrainNodeOptions& options);
+// max_level clamped to the coarsest level of a database of `database_levels` levels (levelCount()),
+// never below min_level: the root tiles' level when maxLevel was not given.
+int clampedMaxLevel(const TerrainNodeOptions& options, int database_levels);
 
 struct TerrainStats {
     size_t resident_tiles = 0;

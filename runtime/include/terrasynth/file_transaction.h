@@ -7,6 +7,8 @@
 // describes the others, e.g. the sidecar, last). If a rename fails, the files already replaced get
 // their previous content back (or disappear if they did not exist), so the set stays as it was.
 // A crash during commit() can leave the set mixed but never a partial file under a final name.
+// Temporaries are named after the machine, the process and the transaction, so writers of one
+// folder never share one and a killed writer's leftovers can be told from a live one's work.
 //
 // Threading: one transaction per thread; not copyable. The destructor removes temporaries that were
 // not committed.
@@ -38,6 +40,10 @@ public:
     // time on what is to be written): its folder exists and is writable, and `path` itself is not
     // a folder.
     static Status checkTarget(const std::string& path);
+    // Whether `file_name` (no folder) is a temporary or backup a transaction made on this machine
+    // ("<name>.tmp.<host>.<pid>.<n>", "<name>.bak.<host>.<pid>.<n>") whose process no longer runs:
+    // a leftover of a killed writer, safe to delete. Another machine's or a live process's is not.
+    static bool isStaleTemporary(const std::string& file_name);
     // Renames every staged file into place, in staging order. On error the previous files are back
     // and the message names the file that could not be replaced. Call once.
     Status commit();

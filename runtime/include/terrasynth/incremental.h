@@ -97,7 +97,8 @@ public:
 
     // A terrain restored from saved state: heights, frozen mask and history as history() and
     // frozenMask() gave them for the same extent and params (whose constraints must be those that
-    // produced them, lifts included). Errors: sizes that do not fit the extent and params.
+    // produced them, lifts included). Errors: sizes that do not fit the extent and params, history
+    // atlas indices past the synthesizer's database (saved state is a file: it is checked, not trusted).
     static Result<IncrementalTerrain> restore(Synthesizer& synthesizer, const PixelWindow& extent, SynthesisParams params,
                                               Heightfield heights, std::vector<uint8_t> frozen,
                                               SynthesisHistory history);

@@ -124,7 +124,7 @@ struct HoleFillParams {
     int candidates = 400;     // random source blocks scored per block, 16..20000
     // Lineage of the artist's picks: generation 0 synthesises 3 variants from scratch and picks
     // choices[0]; each following generation re-synthesises 3 variants guided by the previous pick and
-    // picks choices[k]. Values 0..2, at least one.
+    // picks choices[k]. Values 0..2, at least one, at most limits::kMaxHoleFillPicks.
     std::vector<int> choices = {0};
     double guide_weight = 0.5;  // re-synthesis: share of the block cost given to the guide, [0, 1)
 };
@@ -139,8 +139,15 @@ std::vector<uint8_t> holeMask(const HoleFillParams& p, int width, int height);
 // block fits outside it.
 Result<std::vector<Heightfield>> holeFillVariants(const Heightfield& terrain, const HoleFillParams& p,
                                                   int generation, const Heightfield* guide, int count = 3);
-// Runs the whole lineage in p.choices and returns the final pick.
+// Runs the whole lineage in p.choices and returns the final pick. Errors also: a lineage costing
+// more than limits::kMaxHoleFillCost on this grid (refused before any work).
 Result<Heightfield> holeFill(const Heightfield& terrain, const HoleFillParams& p);
+// Pixel visits of `generations` generations of three quilts each on a width x height grid (blocks
+// over the hole's rectangle clipped to the grid x candidates x patch pixels, twice with a guide,
+// plus the grid per generation), in O(1).
+uint64_t holeFillCost(const HoleFillParams& p, int width, int height, int generations);
+// That cost against limits::kMaxHoleFillCost; the error names `choices` and the cost.
+Status checkHoleFillCost(const HoleFillParams& p, int width, int height, int generations);
 
 // ---- Perspective canvas (s4.1) ----
 

@@ -19,6 +19,11 @@ constexpr uint64_t kMaxFileBytes = uint64_t(4) << 30;  // 4 GiB
 constexpr uint64_t kMaxJsonBytes = uint64_t(256) << 20;  // 256 MiB
 constexpr int kMaxJsonDepth = 64;
 
+// ---- Heights ----
+// Any height or height offset a file carries (databases, edited-heights sidecars): finite and
+// within +-100 km, so no mesher, skirt or statistic ever meets a NaN or an infinity from a file.
+constexpr float kMaxAbsHeightM = 1e5f;
+
 // ---- Images (exemplars, heightmaps, masks) ----
 constexpr int kMaxImageSide = 65536;                       // pixels per side
 constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;    // 268 M samples (1 GiB of float heights)
@@ -39,6 +44,13 @@ constexpr int64_t kMaxWindowOrigin = int64_t(1) << 29;
 // extent, every constraint site and every synthesis margin fit the window limit above.
 constexpr int64_t kMaxProjectOrigin = int64_t(1) << 28;
 constexpr double kMaxConstraintCoordinate = double(int64_t(1) << 28);
+
+// ---- 3D Tiles bakes (docs/bake.md) ----
+// A bake's region lies within +-kMaxProjectOrigin (so every window it synthesizes fits the grid)
+// and holds at most this many level-0 samples (262144^2; about a day of CPU time) and this many
+// tiles (the plan, the merge and the tileset hold a record of each).
+constexpr uint64_t kMaxBakeSamples = uint64_t(1) << 36;
+constexpr int64_t kMaxBakeTiles = int64_t(1) << 22;
 
 // ---- Constraints (docs/project-format.md) ----
 // Point lifting synthesizes every site each round, grouped into shared windows; 20000 points over a
@@ -67,5 +79,9 @@ constexpr int kMaxRidgePoints = 10000;
 // Pixel visits of one ridge (each segment's reach over the grid; terrasynth::ridgeReliefCost), and
 // of one perspective stroke's ridge: a few seconds at the limit.
 constexpr uint64_t kMaxRidgeCost = uint64_t(1) << 31;
+// Hole fill: picks of one layer's lineage (each a generation of three quilts), and the pixel visits
+// of the whole lineage (terrasynth::holeFillCost): about half a minute at the limit.
+constexpr int kMaxHoleFillPicks = 64;
+constexpr uint64_t kMaxHoleFillCost = uint64_t(1) << 34;
 
 }  // namespace terrasynth::limits

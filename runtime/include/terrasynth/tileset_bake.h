@@ -19,8 +19,12 @@
 // tiles/<d>/<x>/<y>.glb (implicit-tiling coordinates: depth d from the root box, x east, y north),
 // optional tiles/<d>/<x>/<y>.png|.f32|.tif heightmaps and tiles/<d>/<x>/<y>.mask_<type>.png splat
 // masks beside the leaves, and after the merge tileset.json (+ subtrees/<d>/<x>/<y>.subtree for
-// implicit tiling). Every file is written under a temporary name and renamed into place, so a file
-// under its final name is always complete; a re-run skips tiles whose files are all present.
+// implicit tiling), and units/<lod>/<i>/<j>.json: per work unit, the size and digest of each of its
+// files, written when the unit is done. Every file is written under a temporary name and renamed
+// into place, so a file under its final name is always complete; a re-run skips tiles whose files
+// match their unit's record (or, without one, are whole). Bakes of the same tiles by several
+// processes at once (a requeued shard beside its first attempt) write the same bytes, so whichever
+// rename lands last changes nothing.
 //
 // Sharding. The bake work is cut into units (a 2x2 block of leaves with their LOD-1 parent, which
 // share one level-0 window, or one coarser tile), ordered along a Morton curve with every parent
@@ -126,7 +130,7 @@ struct BakeStats {
     double seconds = 0.0;
 };
 // Bakes this shard's tiles into a prepared folder, skipping tiles already complete and removing
-// temporaries of this shard's tiles left by an interrupted run. Stops at the first error.
+// temporaries left by killed runs on this machine (never a live process's). Stops at the first error.
 Result<BakeStats> bakeTiles(const std::string& folder, const BakeSource& source, const BakeOptions& options);
 
 struct MergeStats {
@@ -136,10 +140,16 @@ struct MergeStats {
     double root_geometric_error_m = 0.0;
     int64_t content_bytes = 0;  // all .glb files
 };
-// Every tile the plan names that is missing or incomplete (relative paths), in tree order.
+// Every file the plan names that is missing or incomplete (relative paths), in tree order: tile
+// files, and the unit records (units/<lod>/<i>/<j>.json) a shard writes once a unit is done. Cheap:
+// nothing is read but .glb headers.
 Result<std::vector<std::string>> findMissingTiles(const std::string& folder);
-// Writes tileset.json (and subtree files) from the tiles on disk. Refuses, naming the missing tiles,
-// when any is absent; writes nothing then.
-Result<MergeStats> mergeTileset(const std::string& folder);
+// Writes tileset.json (and subtree files) from the tiles on disk, after verifying every file of
+// every tile against the record its shard wrote (size and FNV-1a digest) and every .glb's container
+// (header, chunk lengths, a JSON chunk naming the tile it should be). Refuses, naming the files,
+// when any is missing, incomplete or fails verification; writes nothing then, and `refused` (when
+// given) lists those files (empty when the merge failed for another reason, e.g. an unwritable
+// folder).
+Result<MergeStats> mergeTileset(const std::string& folder, std::vector<std::string>* refused = nullptr);
 
 }  // namespace terrasynth

@@ -1,4 +1,6 @@
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -17,14 +19,21 @@ Status writeFileAtomically(const std::string& path, const std::string& bytes) {
 }
 
 Result<std::string> readFileBytes(const std::string& path, uint64_t max_bytes) {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return Status::error(path + ": cannot open: " + std::strerror(errno));
+    // Opened without blocking: opening a named pipe for reading otherwise waits for a writer, for
+    // ever, before the check below could refuse it.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return Status::error(path + ": cannot open: " + std::strerror(errno));
     // Regular files only: a folder reads as nothing, a device or pipe may never end.
     struct stat st {};
-    const bool stated = ::fstat(fileno(f), &st) == 0;
+    const bool stated = ::fstat(fd, &st) == 0;
     if (!stated || !S_ISREG(st.st_mode)) {
-        std::fclose(f);
+        ::close(fd);
         return Status::error(path + (stated && S_ISDIR(st.st_mode) ? ": is a folder, not a file" : ": not a regular file"));
+    }
+    std::FILE* f = ::fdopen(fd, "rb");
+    if (!f) {
+        ::close(fd);
+        return Status::error(path + ": cannot open: " + std::strerror(errno));
     }
     const uint64_t size = static_cast<uint64_t>(st.st_size);
     if (size > max_bytes) {

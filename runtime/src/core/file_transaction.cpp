@@ -3,10 +3,12 @@
 #include "terrasynth/file_transaction.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <climits>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -17,10 +19,25 @@
 namespace terrasynth {
 namespace {
 
-// Unique per process and transaction, so concurrent writers of one folder never share a temporary.
+// This machine's name as it goes into file names: no '/' and no '.', so the name parses back.
+const std::string& hostTag() {
+    static const std::string tag = [] {
+        char name[256] = {};
+        if (::gethostname(name, sizeof name - 1) != 0 || !name[0]) return std::string("host");
+        std::string t = name;
+        for (char& c : t)
+            if (c == '/' || c == '.') c = '_';
+        return t;
+    }();
+    return tag;
+}
+
+// Unique per machine, process and transaction ("<host>.<pid>.<n>"), so concurrent writers of one
+// folder, on one machine or several sharing it, never share a temporary, and isStaleTemporary can
+// tell a dead writer's leftovers from a live one's work.
 std::string uniqueSuffix() {
     static std::atomic<unsigned long> counter{0};
-    return "." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+    return "." + hostTag() + "." + std::to_string(::getpid()) + "." + std::to_string(counter++);
 }
 
 Status writeWhole(const std::string& temp, const std::string& path, const std::string& bytes) {
@@ -99,6 +116,29 @@ Status FileTransaction::checkTarget(const std::string& path) {
     if (::access(folder.c_str(), W_OK) != 0)
         return Status::error(path + ": cannot write in " + folder + ": " + std::strerror(errno));
     return Status::ok();
+}
+
+bool FileTransaction::isStaleTemporary(const std::string& file_name) {
+    // "<name>.tmp.<host>.<pid>.<n>" or "<name>.bak.<host>.<pid>.<n>"
+    const size_t last = file_name.rfind('.');
+    if (last == std::string::npos || last == 0) return false;
+    const size_t pid_dot = file_name.rfind('.', last - 1);
+    if (pid_dot == std::string::npos || pid_dot == 0) return false;
+    const size_t host_dot = file_name.rfind('.', pid_dot - 1);
+    if (host_dot == std::string::npos || host_dot < 4) return false;
+    const std::string kind = file_name.substr(host_dot - 4, 5);
+    if (kind != ".tmp." && kind != ".bak.") return false;
+    const std::string host = file_name.substr(host_dot + 1, pid_dot - host_dot - 1);
+    const std::string pid_text = file_name.substr(pid_dot + 1, last - pid_dot - 1);
+    const std::string counter = file_name.substr(last + 1);
+    const auto digits = [](const std::string& t) {
+        return !t.empty() && t.size() <= 18 && t.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (host != hostTag() || !digits(pid_text) || !digits(counter)) return false;
+    const long long pid = std::stoll(pid_text);
+    if (pid <= 0 || pid > INT32_MAX || pid == ::getpid()) return false;
+    // kill(pid, 0) fails with ESRCH only when no such process exists (EPERM: it exists).
+    return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
 }
 
 std::vector<std::string> FileTransaction::paths() const {

@@ -3,6 +3,8 @@
 // finite; the mask travels with the exemplar so the database never copies from a void.
 #include "core/gdal_dem.h"
 
+#include <sys/stat.h>
+
 #include <gdal_alg.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
@@ -132,6 +134,13 @@ Status fillVoids(Heightfield& field, const std::vector<uint8_t>& valid, const st
     return Status::ok();
 }
 
+// GDAL opens files itself and would block for ever on a named pipe: only regular files go to it
+// (stat, unlike open, does not wait for a writer).
+bool isRegularFile(const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
 }  // namespace
 
 bool isGdalDemExtension(const std::string& extension) {
@@ -139,11 +148,13 @@ bool isGdalDemExtension(const std::string& extension) {
 }
 
 bool gdalRecognisesRaster(const std::string& path) {
+    if (!isRegularFile(path)) return false;
     QuietGdalErrors quiet;
     return GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, nullptr) != nullptr;
 }
 
 Result<Exemplar> readGdalExemplar(const std::string& path) {
+    if (!isRegularFile(path)) return Status::error(path + ": not a regular file");
     QuietGdalErrors quiet;
     DatasetPtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
     if (!dataset) return Status::error(path + ": GDAL cannot read it as a raster: " + QuietGdalErrors::last());

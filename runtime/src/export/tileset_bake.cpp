@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <map>
 #include <mutex>
 #include <thread>
 
 #include "export/export_internal.h"
 #include "export/tileset_plan.h"
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/gltf_export.h"
 
 namespace terrasynth {
@@ -84,14 +84,36 @@ public:
 private:
     std::string filePath(const std::string& relative) const { return folder_ + "/" + relative; }
 
-    bool tileComplete(const TileKey& t) const { return tileFilesComplete(folder_, tileFiles(tree_, o_, t)); }
+    // Whether the tile's files on disk can be kept: each whole, matching the unit's record when there
+    // is one (else a .glb must still be a sound container naming this tile). What was found goes
+    // into `found` for the unit's new record.
+    bool tileVerified(const TileKey& t, const RecordedFiles* record, RecordedFiles* found) const {
+        for (const std::string& f : tileFiles(tree_, o_, t)) {
+            const FileDigest* recorded = nullptr;
+            if (record) {
+                auto it = record->find(f);
+                if (it == record->end()) return false;
+                recorded = &it->second;
+            }
+            auto digest = verifyTileFile(folder_, f, t, recorded, nullptr);
+            if (!digest) return false;
+            (*found)[f] = *digest;
+        }
+        return true;
+    }
 
     Status bakeUnit(const BakeUnit& unit) {
         std::vector<TileKey> todo;
         const std::vector<TileKey> tiles = unitTiles(tree_, unit);
+        auto record = readUnitRecord(folder_, tree_, o_, unit);  // absent or unreadable: rewritten below
+        RecordedFiles found;
         for (const TileKey& t : tiles)
-            if (!tileComplete(t)) todo.push_back(t);
-        if (todo.empty()) return finished(static_cast<int64_t>(tiles.size()), 0, 0);
+            if (!tileVerified(t, record ? &record.value() : nullptr, &found)) todo.push_back(t);
+        if (todo.empty()) {
+            if (!record)
+                if (Status s = writeUnitRecord(folder_, tree_, o_, unit, found); !s) return s;
+            return finished(static_cast<int64_t>(tiles.size()), 0, 0);
+        }
 
         const int level = BakeTree::sourceLevel(unit.lod);
         const PixelWindow window = unitWindow(tree_, unit);
@@ -124,6 +146,11 @@ private:
             if (!record) return record.status();
             bytes += record->file_bytes;
         }
+        // Written last: a unit with a record is done (its files read back from disk, so the record
+        // says what is there).
+        for (const TileKey& t : todo)
+            for (const std::string& f : tileFiles(tree_, o_, t)) found.erase(f);
+        if (Status s = writeUnitRecord(folder_, tree_, o_, unit, found); !s) return s;
         return finished(static_cast<int64_t>(tiles.size() - todo.size()), static_cast<int64_t>(todo.size()), bytes);
     }
 
@@ -166,32 +193,18 @@ private:
         o_.progress(progress_);
     }
 
-    // An interrupted run leaves "<file>.tmp.<pid>" beside the files it was writing; remove those of
-    // this shard's tiles (other shards may be writing theirs right now).
+    // A killed run leaves temporaries (and commit backups) beside the files it was writing. Only
+    // those whose writer is gone are removed: a duplicate of this shard, or another shard, may be
+    // writing its own right now (FileTransaction::isStaleTemporary).
     void removeStaleTemporaries() {
         std::error_code ec;
-        const fs::path tiles = fs::path(folder_) / "tiles";
-        if (!fs::is_directory(tiles, ec)) return;
-        std::map<std::tuple<int, int64_t, int64_t>, bool> mine;
-        for (size_t k = first_; k < last_; ++k)
-            for (const TileKey& t : unitTiles(tree_, units_[k])) mine[{t.lod, t.i, t.j}] = true;
-        for (auto it = fs::recursive_directory_iterator(tiles, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-            const std::string name = it->path().filename().string();
-            const size_t temp = name.find(".tmp.");
-            if (temp == std::string::npos || !it->is_regular_file(ec)) continue;
-            // tiles/<d>/<x>/<y>.<extension>.tmp.<pid>
-            const fs::path x_dir = it->path().parent_path();
-            try {
-                ImplicitCoord c;
-                c.depth = std::stoi(x_dir.parent_path().filename().string());
-                c.x = std::stoll(x_dir.filename().string());
-                c.y = std::stoll(name.substr(0, name.find('.')));
-                if (c.depth < tree_.emptyLevels() || c.depth >= tree_.depth()) continue;
-                const TileKey t = tree_.tileAt(c);
-                if (mine.count({t.lod, t.i, t.j})) fs::remove(it->path(), ec);
-            } catch (const std::exception&) {
-                continue;  // not one of ours
-            }
+        for (const char* sub : {"tiles", "units"}) {
+            const fs::path root = fs::path(folder_) / sub;
+            if (!fs::is_directory(root, ec)) continue;
+            for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
+                 it.increment(ec))
+                if (FileTransaction::isStaleTemporary(it->path().filename().string()) && it->is_regular_file(ec))
+                    fs::remove(it->path(), ec);
         }
     }
 

@@ -1,7 +1,11 @@
-// mergeTileset: the plan's tiles -> refuse if any is missing -> each tile's record from its .glb ->
+// mergeTileset: the plan's tiles -> refuse if any is missing -> every file verified against its unit's
+// record (size, digest, the .glb's container) and each tile's record from its verified .glb ->
 // accumulated geometric errors and bounding boxes, children first -> tileset.json, explicit or implicit.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
 #include <unordered_map>
@@ -13,6 +17,7 @@
 namespace terrasynth {
 
 using namespace bake_detail;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -45,19 +50,11 @@ class Merger {
 public:
     Merger(const std::string& folder, BakeOptions plan) : folder_(folder), plan_(std::move(plan)), tree_(plan_) {}
 
-    Result<MergeStats> run() {
+    // `refused`: the files that failed verification, when the merge is refused for them.
+    Result<MergeStats> run(std::vector<std::string>* refused) {
         const std::vector<TileKey> keys = tree_.allTiles();
         tiles_.resize(keys.size());
-        const int threads = std::max(1u, std::thread::hardware_concurrency());
-        Status read = export_detail::parallelFor(static_cast<int>(keys.size()), threads, [&](int k) -> Status {
-            const std::string path = folder_ + "/" + tree_.tilePath(keys[k], ".glb");
-            auto record = readTileRecord(path);
-            if (!record) return record.status();
-            if (!(record->key == keys[k])) return Status::error(path + ": holds another tile (a file moved?)");
-            tiles_[k].record = *record;
-            return Status::ok();
-        });
-        if (!read) return read;
+        if (Status s = verifyTiles(keys, refused); !s) return s;
         accumulate(keys);
 
         MergeStats stats;
@@ -86,6 +83,50 @@ public:
     }
 
 private:
+    // Every file of every tile against its unit's record (size and digest) and every .glb's
+    // container, each file read once; the tiles' records come from the verified bytes.
+    Status verifyTiles(const std::vector<TileKey>& keys, std::vector<std::string>* refused) {
+        std::map<std::string, RecordedFiles> records;  // by unit record path
+        for (const TileKey& t : keys) {
+            const BakeUnit unit = unitOf(t);
+            if (records.count(unitRecordPath(unit))) continue;
+            auto record = readUnitRecord(folder_, tree_, plan_, unit);
+            if (!record) return refuse({unitRecordPath(unit)}, {record.message()}, refused);
+            records[unitRecordPath(unit)] = std::move(record.value());
+        }
+        std::mutex mutex;
+        std::vector<std::pair<std::string, std::string>> problems;  // file, message
+        const int threads = std::max(1u, std::thread::hardware_concurrency());
+        (void)export_detail::parallelFor(static_cast<int>(keys.size()), threads, [&](int k) -> Status {
+            const RecordedFiles& record = records.at(unitRecordPath(unitOf(keys[k])));
+            for (const std::string& f : tileFiles(tree_, plan_, keys[k])) {
+                auto it = record.find(f);
+                auto verified = verifyTileFile(folder_, f, keys[k], it == record.end() ? nullptr : &it->second,
+                                               &tiles_[k].record);
+                if (!verified) {
+                    std::lock_guard<std::mutex> lock(mutex);
+                    problems.push_back({f, verified.message()});
+                }
+            }
+            return Status::ok();
+        });
+        if (problems.empty()) return Status::ok();
+        std::sort(problems.begin(), problems.end());
+        std::vector<std::string> files, messages;
+        for (auto& [file, message] : problems) files.push_back(file), messages.push_back(message);
+        return refuse(files, messages, refused);
+    }
+
+    Status refuse(const std::vector<std::string>& files, const std::vector<std::string>& messages,
+                  std::vector<std::string>* refused) const {
+        if (refused) *refused = files;
+        std::string list;
+        for (size_t k = 0; k < messages.size() && k < 5; ++k) list += (k ? "; " : "") + messages[k];
+        if (messages.size() > 5) list += "; ... (" + std::to_string(messages.size() - 5) + " more)";
+        return Status::error(folder_ + ": " + std::to_string(files.size()) + " file" + (files.size() > 1 ? "s" : "") +
+                             " failed verification, nothing merged: " + list + "; re-run the shards that own them");
+    }
+
     // Children before parents (the reverse of the pre-order): errors add up and boxes grow upwards.
     void accumulate(const std::vector<TileKey>& keys) {
         std::unordered_map<TileKey, size_t, KeyHash> index;
@@ -182,16 +223,23 @@ Result<std::vector<std::string>> findMissingTiles(const std::string& folder) {
     if (!plan) return plan.status();
     const BakeTree tree(*plan);
     std::vector<std::string> missing;
-    for (const TileKey& t : tree.allTiles())
+    for (const TileKey& t : tree.allTiles()) {
         for (const std::string& f : tileFiles(tree, *plan, t))
             if (!tileFilesComplete(folder, {f})) missing.push_back(f);
+        // A unit's record comes with its first tile (the coarsest).
+        const BakeUnit unit = unitOf(t);
+        const std::string record = unitRecordPath(unit);
+        if (unitTiles(tree, unit).front() == t && !fs::exists(folder + "/" + record)) missing.push_back(record);
+    }
     return missing;
 }
 
-Result<MergeStats> mergeTileset(const std::string& folder) {
+Result<MergeStats> mergeTileset(const std::string& folder, std::vector<std::string>* refused) {
+    if (refused) refused->clear();
     auto missing = findMissingTiles(folder);
     if (!missing) return missing.status();
     if (!missing->empty()) {
+        if (refused) *refused = *missing;
         std::string list;
         for (size_t k = 0; k < missing->size() && k < 10; ++k) list += (k ? ", " : "") + (*missing)[k];
         if (missing->size() > 10) list += ", ... (" + std::to_string(missing->size() - 10) + " more)";
@@ -200,7 +248,7 @@ Result<MergeStats> mergeTileset(const std::string& folder) {
     }
     auto plan = readPlan(folder);
     if (!plan) return plan.status();
-    return Merger(folder, *plan).run();
+    return Merger(folder, *plan).run(refused);
 }
 
 }  // namespace terrasynth

@@ -5,6 +5,7 @@
 
 #include "export/tileset_plan.h"
 #include "terrasynth/heightfield_io.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth {
 
@@ -47,9 +48,19 @@ Status checkBakeOptions(const BakeOptions& o) {
     if (o.region.width < 2 || o.region.height < 2)
         return Status::error("region: needs at least 2x2 samples (1 quad), got " + std::to_string(o.region.width) + "x" +
                              std::to_string(o.region.height));
-    const int64_t limit = int64_t(1) << 30;  // tile indices and implicit coordinates stay 32-bit
-    if (o.region.x < -limit || o.region.y < -limit || o.region.x + o.region.width > limit || o.region.y + o.region.height > limit)
-        return Status::error("region: must lie within +-2^30 samples of the origin");
+    // What synthesis serves: every window of every LOD, with its apron, inside the grid (the
+    // project origin's bound). Compared before adding, so x + width cannot overflow.
+    const int64_t limit = limits::kMaxProjectOrigin;
+    if (o.region.x < -limit || o.region.y < -limit || o.region.x > limit - o.region.width ||
+        o.region.y > limit - o.region.height)
+        return Status::error("region: must lie within +-2^28 (" + std::to_string(limit) +
+                             ") samples of the origin, the grid synthesis serves (docs/limits.md)");
+    // The cost, refused at once rather than found by running out of memory: samples and tiles.
+    const uint64_t samples = static_cast<uint64_t>(o.region.width) * static_cast<uint64_t>(o.region.height);
+    if (samples > limits::kMaxBakeSamples)
+        return Status::error("region: " + std::to_string(o.region.width) + "x" + std::to_string(o.region.height) + " = " +
+                             std::to_string(samples) + " samples, at most " + std::to_string(limits::kMaxBakeSamples) +
+                             " in one bake (docs/limits.md); bake it as several regions");
     if (o.tile_size < 2 || o.tile_size > 4096)
         return Status::error("tile size: must be 2..4096 quads, got " + std::to_string(o.tile_size));
     if (o.levels < 1 || o.levels > 16) return Status::error("levels: must be 1..16, got " + std::to_string(o.levels));
@@ -68,6 +79,13 @@ Status checkBakeOptions(const BakeOptions& o) {
     const BakeTree tree(o);
     if (tree.depth() > 30) return Status::error("region: too large for " + std::to_string(o.levels) + " levels of " +
                                                 std::to_string(o.tile_size) + "-quad tiles (tree deeper than 30)");
+    int64_t tiles = 0;
+    for (int lod = 0; lod < tree.levels(); ++lod) tiles += tree.range(lod).countI() * tree.range(lod).countJ();
+    if (tiles > limits::kMaxBakeTiles)
+        return Status::error("region: " + std::to_string(o.region.width) + "x" + std::to_string(o.region.height) +
+                             " samples in " + std::to_string(o.tile_size) + "-quad tiles and " + std::to_string(o.levels) +
+                             " levels make " + std::to_string(tiles) + " tiles, at most " +
+                             std::to_string(limits::kMaxBakeTiles) + " (docs/limits.md); use larger tiles");
     return Status::ok();
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -116,14 +117,42 @@ struct TileRecord {
 // with a `border` apron; the tile's north-west sample sits at source-level pixel (span.x0, span.y0).
 Result<TileRecord> writeTileGlb(const std::string& path, const BakeTree& tree, const TileKey& key,
                                 const Heightfield& field, int border, bool quantize);
-// Reads the record back from a complete .glb; an error names the file and what is wrong.
-Result<TileRecord> readTileRecord(const std::string& path);
+// The record of a .glb held in memory, after checking the whole container: header magic, version
+// 2 and length equal to the size, a JSON chunk then a BIN chunk whose lengths (multiples of 4) end
+// exactly at the end of the file, the JSON bounded (limits.h) and naming a terrasynth tile, its
+// buffer inside the BIN chunk. Errors name `path` and what is wrong.
+Result<TileRecord> tileRecordFromGlb(const std::string& bytes, const std::string& path);
 // True when `path` is a whole GLB (header length equals the file size).
 bool glbComplete(const std::string& path);
 // A tile's files relative to the output folder (heightmap, sidecar, masks for leaves), the .glb last.
 std::vector<std::string> tileFiles(const BakeTree& tree, const BakeOptions& options, const TileKey& t);
 // Every file present, the .glb whole.
 bool tileFilesComplete(const std::string& folder, const std::vector<std::string>& files);
+
+// ---- Unit records (tileset_records.cpp) ----
+// units/<lod>/<i>/<j>.json, written when a unit's tiles are all on disk: every file of its tiles
+// (tileFiles order) with its size and FNV-1a digest as found there. A re-run trusts a tile only
+// when its files match the record, and the merge verifies every file against it.
+struct FileDigest {
+    int64_t bytes = 0;
+    uint64_t digest = 0;
+};
+using RecordedFiles = std::map<std::string, FileDigest>;  // by path relative to the folder
+std::string unitRecordPath(const BakeUnit& unit);
+// The unit whose work produces tile `t`.
+BakeUnit unitOf(const TileKey& t);
+// The unit's record, checked: format, and exactly the files of the unit's tiles. Errors name the
+// record and the field (a missing record is an error too).
+Result<RecordedFiles> readUnitRecord(const std::string& folder, const BakeTree& tree, const BakeOptions& options,
+                                     const BakeUnit& unit);
+// Writes the unit's record (atomically): digests from `known` where given, else read from disk.
+Status writeUnitRecord(const std::string& folder, const BakeTree& tree, const BakeOptions& options, const BakeUnit& unit,
+                       const RecordedFiles& known);
+// Reads one file of tile `tile` and checks it: against `recorded` (null: nothing recorded yet)
+// in size and digest, and a .glb's container and tile (its record into `glb_record` when given).
+// Errors name the file and the problem. Returns what was found.
+Result<FileDigest> verifyTileFile(const std::string& folder, const std::string& file, const TileKey& tile,
+                                  const FileDigest* recorded, TileRecord* glb_record);
 
 // The skirt of a tile: its relief plus a margin, so that any neighbour's edge lies above its foot.
 float skirtDepth(const Heightfield& field, int border, double vertex_spacing_m);

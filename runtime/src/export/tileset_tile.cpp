@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sys/stat.h>
 
+#include "core/json_reader.h"
 #include "export/export_internal.h"
 #include "terrasynth/file_transaction.h"
 #include "export/tileset_plan.h"
@@ -127,26 +128,38 @@ uint32_t le32(const unsigned char* p) { return uint32_t(p[0]) | uint32_t(p[1]) <
 
 bool glbComplete(const std::string& path) {
     struct stat st;
-    if (::stat(path.c_str(), &st) != 0 || st.st_size < 20) return false;
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_size < 20) return false;
     std::ifstream in(path, std::ios::binary);
     unsigned char header[12];
     if (!in.read(reinterpret_cast<char*>(header), 12)) return false;
     return le32(header) == 0x46546C67u && le32(header + 8) == static_cast<uint64_t>(st.st_size);
 }
 
-Result<TileRecord> readTileRecord(const std::string& path) {
-    if (!glbComplete(path)) return Status::error(path + ": missing or incomplete");
-    std::ifstream in(path, std::ios::binary);
-    unsigned char header[20];
-    in.read(reinterpret_cast<char*>(header), 20);
-    const uint32_t json_length = le32(header + 12);
-    if (!in || le32(header + 16) != 0x4E4F534Au || json_length > (64u << 20)) return Status::error(path + ": no JSON chunk");
-    std::string text(json_length, '\0');
-    if (!in.read(text.data(), json_length)) return Status::error(path + ": truncated JSON chunk");
-    const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-    if (j.is_discarded()) return Status::error(path + ": invalid JSON chunk");
+Result<TileRecord> tileRecordFromGlb(const std::string& bytes, const std::string& path) {
+    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
+    const size_t size = bytes.size();
+    if (size < 20 || le32(p) != 0x46546C67u) return Status::error(path + ": not a GLB file");
+    if (le32(p + 4) != 2) return Status::error(path + ": GLB version " + std::to_string(le32(p + 4)) + ", not 2");
+    if (le32(p + 8) != size)
+        return Status::error(path + ": the header says " + std::to_string(le32(p + 8)) + " bytes, the file has " +
+                             std::to_string(size) + " (truncated or padded)");
+    // Chunk lengths are compared with what is left, never added up first (no wrap-around).
+    const uint64_t json_length = le32(p + 12);
+    if (le32(p + 16) != 0x4E4F534Au || json_length % 4 != 0 || json_length > size - 20)
+        return Status::error(path + ": the first chunk is not a JSON chunk inside the file");
+    const size_t bin_at = 20 + static_cast<size_t>(json_length);
+    if (size - bin_at < 8 || le32(p + bin_at + 4) != 0x004E4942u)
+        return Status::error(path + ": no BIN chunk after the JSON chunk");
+    const uint64_t bin_length = le32(p + bin_at);
+    if (bin_length % 4 != 0 || bin_length != size - bin_at - 8)
+        return Status::error(path + ": the BIN chunk's length " + std::to_string(bin_length) + " does not end at the end of the file");
+    auto parsed = detail::parseJson(bytes.substr(20, json_length), path + ": JSON chunk");
+    if (!parsed) return parsed.status();
+    const nlohmann::json& j = *parsed;
     TileRecord r;
     try {
+        const uint64_t buffer = j.at("buffers").at(0).at("byteLength").get<uint64_t>();
+        if (buffer > bin_length) return Status::error(path + ": the buffer is larger than the BIN chunk");
         const auto& info = j.at("nodes").at(0).at("extras").at("terrasynth_tile");
         r.key.lod = info.at("lod").get<int>();
         r.key.i = info.at("index").at(0).get<int64_t>();
@@ -154,11 +167,12 @@ Result<TileRecord> readTileRecord(const std::string& path) {
         r.own_error_m = info.at("geometric_error_m").get<double>();
         for (int k = 0; k < 6; ++k) r.bounds[k] = info.at("bounds").at(k).get<double>();
     } catch (const nlohmann::json::exception&) {
-        return Status::error(path + ": not a terrasynth bake tile (no terrasynth_tile extras)");
+        return Status::error(path + ": not a terrasynth bake tile (no buffer or no terrasynth_tile extras)");
     }
-    struct stat st;
-    ::stat(path.c_str(), &st);
-    r.file_bytes = st.st_size;
+    if (!std::isfinite(r.own_error_m) || r.own_error_m < 0.0) return Status::error(path + ": geometric_error_m is not a finite error");
+    for (double b : r.bounds)
+        if (!std::isfinite(b)) return Status::error(path + ": bounds are not finite");
+    r.file_bytes = static_cast<int64_t>(size);
     return r;
 }
 

@@ -94,6 +94,15 @@ Result<IncrementalTerrain> IncrementalTerrain::restore(Synthesizer& synthesizer,
                     got.passes.size() == static_cast<size_t>(synth::historyPassesAt(terrain.params_, static_cast<int>(level), coarsest));
         for (const auto& pass : got.passes) fits = fits && pass.index.size() == n && pass.v.size() == n;
         if (!fits) return Status::error("restored history level " + std::to_string(level) + " does not fit the extent");
+        // The kernels read the atlas at these indices: one past it is out of bounds, not a pixel.
+        const size_t atlas = level < static_cast<size_t>(synthesizer.database().levelCount())
+                                 ? synthesizer.database().levels[level].pixelCount() : 0;
+        for (size_t pass = 0; pass < got.passes.size(); ++pass)
+            for (size_t i = 0; i < n; ++i)
+                if (got.passes[pass].index[i] >= atlas)
+                    return Status::error("restored history level " + std::to_string(level) + " pass " + std::to_string(pass) +
+                                         ": atlas index " + std::to_string(got.passes[pass].index[i]) + " at pixel " +
+                                         std::to_string(i) + " is past the atlas of " + std::to_string(atlas) + " pixels");
     }
     terrain.heights_ = std::move(heights);
     terrain.frozen_ = std::move(frozen);

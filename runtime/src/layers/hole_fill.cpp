@@ -14,6 +14,7 @@
 #include "layers/pyramid.h"
 #include "layers/random.h"
 #include "terrasynth/layers_tools.h"
+#include "terrasynth/limits.h"
 
 namespace terrasynth {
 namespace {
@@ -99,6 +100,9 @@ Status validateHoleFill(const HoleFillParams& p) {
     if (p.candidates < 16 || p.candidates > 20000) return Status::error("candidates: must be in 16..20000");
     if (!(p.guide_weight >= 0.0 && p.guide_weight < 1.0)) return Status::error("guide_weight: must be in [0, 1)");
     if (p.choices.empty()) return Status::error("choices: needs at least one pick");
+    if (p.choices.size() > static_cast<size_t>(limits::kMaxHoleFillPicks))
+        return Status::error("choices: " + std::to_string(p.choices.size()) + " picks, at most " +
+                             std::to_string(limits::kMaxHoleFillPicks) + " (each is a generation of three quilts)");
     for (int c : p.choices)
         if (c < 0 || c > 2) return Status::error("choices: each pick must be 0, 1 or 2");
     return Status::ok();
@@ -371,8 +375,32 @@ Result<std::vector<Heightfield>> holeFillVariants(const Heightfield& terrain, co
     return out;
 }
 
+uint64_t holeFillCost(const HoleFillParams& p, int width, int height, int generations) {
+    const auto clipped = [](double at, double size, int grid) {
+        const double lo = std::max(0.0, std::floor(at)), hi = std::min(double(grid), std::ceil(at + size));
+        return hi > lo ? static_cast<uint64_t>(hi - lo) : uint64_t(0);
+    };
+    const uint64_t step = static_cast<uint64_t>(std::max(1, p.patch_px - p.overlap_px));
+    const uint64_t bx = (clipped(p.hole.x, p.hole.width, width) + p.overlap_px + step - 1) / step;
+    const uint64_t by = (clipped(p.hole.y, p.hole.height, height) + p.overlap_px + step - 1) / step;
+    const uint64_t per_quilt = bx * by * static_cast<uint64_t>(p.candidates) * p.patch_px * p.patch_px;
+    const uint64_t grid = static_cast<uint64_t>(width) * height;
+    // Generation 0 scores the overlap only; each later one also the guide.
+    const uint64_t g = static_cast<uint64_t>(std::max(0, generations));
+    return 3 * (per_quilt * (g > 0 ? 2 * g - 1 : 0) + grid * g);
+}
+
+Status checkHoleFillCost(const HoleFillParams& p, int width, int height, int generations) {
+    const uint64_t cost = holeFillCost(p, width, height, generations);
+    if (cost <= limits::kMaxHoleFillCost) return Status::ok();
+    return Status::error("choices: " + std::to_string(generations) + " generations of three quilts would visit " +
+                         std::to_string(cost) + " pixels, at most " + std::to_string(limits::kMaxHoleFillCost) +
+                         " (fewer picks or candidates, or a smaller hole)");
+}
+
 Result<Heightfield> holeFill(const Heightfield& terrain, const HoleFillParams& p) {
     if (Status s = validateHoleFill(p); !s) return s;
+    if (Status s = checkHoleFillCost(p, terrain.width, terrain.height, static_cast<int>(p.choices.size())); !s) return s;
     Heightfield chosen;
     for (size_t g = 0; g < p.choices.size(); ++g) {
         auto variants = holeFillVariants(terrain, p, static_cast<int>(g), g ? &chosen : nullptr);

@@ -242,6 +242,7 @@ Result<std::vector<Heightfield>> LayerEditor::holeFillPreviews(int index, int ge
         return Status::error("generation must be in 0.." + std::to_string(p->choices.size()));
     auto below = impl_->evaluator.evaluate(impl_->stack, index);
     if (!below) return below.status();
+    if (Status s = checkHoleFillCost(*p, below->width, below->height, generation + 1); !s) return s;
     std::optional<Heightfield> chosen;
     for (int g = 0; g < generation; ++g) {
         auto v = holeFillVariants(*below, *p, g, chosen ? &*chosen : nullptr);

@@ -166,6 +166,9 @@ ToolParams readHoleFill(Reader& r) {
     if (const json* c = r.child("choices")) {
         p.choices.clear();
         if (!c->is_array() || c->empty()) r.fail("choices", "must be a non-empty array of picks 0..2");
+        else if (c->size() > static_cast<size_t>(limits::kMaxHoleFillPicks))
+            r.fail("choices", std::to_string(c->size()) + " picks, at most " + std::to_string(limits::kMaxHoleFillPicks) +
+                                  " (each is a generation of three quilts)");
         else
             for (const json& e : *c) {
                 // Read as 64 bits: 2^32 + 1 must not wrap into a valid pick.

@@ -1,5 +1,7 @@
 // EditSession: saving (the .tsyn, its masks and the edited-heights sidecar, as one FileTransaction)
 // and opening from a sidecar.
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "core/paths.h"
@@ -44,6 +46,9 @@ Status EditSession::save(const std::string& path) {
     project.layers_json = layerStackToJson(s.layers->stack());
     project.synthesis.seed = s.seed;
     project.edited_heights = sidecar_path;
+    // A prebuilt database has the levels it has: the project written says so rather than keep a
+    // default (database_levels is L, levels 0..L; the format's smallest L is 1).
+    if (project.exemplars.empty()) project.database_levels = std::clamp(s.db->levelCount() - 1, 1, 12);
     if (!project.exemplars.empty() && project.database.empty())
         project.database = detail::absolutePath(s.project.databaseCachePath());
     auto canonical_constraints = canonical(*written, *s.db, s.extent);

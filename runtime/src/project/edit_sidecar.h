@@ -43,11 +43,17 @@ struct EditSidecar {
     ConstraintLifts reference_lifts;
 };
 
+constexpr char kEditSidecarMagic[8] = {'T', 'S', 'Y', 'N', 'E', 'D', 'I', 'T'};
+
 std::string encodeEditSidecar(const EditSidecar& sidecar);
-// Errors name `path` and what is wrong (not a sidecar, version, truncated, checksum, sizes).
-// `with_history` false skips the history (what Terrain needs).
+// The file validated whole (edit_sidecar_read.cpp): the header parsed with bounded depth and read
+// field by field, blob sizes, finite heights and history offsets within limits::kMaxAbsHeightM, a
+// 0/1 frozen mask, lifts in range. Errors read "<path>: <field>: <problem>". History atlas indices
+// need the database: IncrementalTerrain::restore checks them. `with_history` false skips the
+// history (what Terrain needs).
 Result<EditSidecar> decodeEditSidecar(const std::string& bytes, const std::string& path, bool with_history);
-// Only the digest (cheap check before decoding everything).
+// Only the digest (cheap check before decoding everything); the header is still bounded and the
+// digest must be 16 hex digits.
 Result<uint64_t> sidecarDigest(const std::string& bytes, const std::string& path);
 
 // What edited heights depend on: the database, the extent, the synthesis settings, the constraints
