@@ -1,0 +1,221 @@
+// The drainage breach on the OpenCL device (cl/cl_drainage.h, kernels/drainage.cl) against the C++
+// reference, synth::breachPits, bit for bit: every float of every pixel's state (S, V, ceiling),
+// on real synthesized levels of the default database at each level's radius, with and without
+// carving to the window's edge, with frozen pixels taking a recorded state, constrained pixels,
+// exemplars with real basins and a needed sub-window.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "cl/cl_drainage.h"
+#include "cl/cl_runtime.h"
+#include "synth/drainage_breach.h"
+#include "synth/reference_kernels.h"
+#include "terrasynth/synthesizer.h"
+#include "test_support.h"
+
+namespace terrasynth {
+namespace {
+
+using synth::LevelRegion;
+using synth::PixelState;
+
+// An OpenCL context with the drainage program, as the synthesizer builds it.
+struct Device {
+    cl::DeviceChoice choice;
+    cl::ContextHandle context;
+    cl::QueueHandle queue;
+    cl::ProgramHandle program;
+    cl::DeviceBreach breach;
+};
+
+Device& device() {
+    static Device d = [] {
+        Device out;
+        auto choice = cl::chooseDevice("");
+        EXPECT_TRUE(choice) << choice.message();
+        if (!choice) return out;
+        out.choice = choice.value();
+        cl_int err = CL_SUCCESS;
+        const cl_context_properties props[] = {CL_CONTEXT_PLATFORM, reinterpret_cast<cl_context_properties>(out.choice.platform), 0};
+        *out.context.out() = clCreateContext(props, 1, &out.choice.device, nullptr, nullptr, &err);
+        EXPECT_EQ(err, CL_SUCCESS);
+        *out.queue.out() = clCreateCommandQueue(out.context.get(), out.choice.device, 0, &err);
+        EXPECT_EQ(err, CL_SUCCESS);
+        auto program = cl::buildProgram(out.context.get(), out.choice.device, {"hash.cl", "drainage.cl"},
+                                        "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt" + cl::drainageDefines());
+        EXPECT_TRUE(program) << program.message();
+        if (!program) return out;
+        out.program = std::move(program.value());
+        const Status s = out.breach.initialise(out.context.get(), out.choice.device, out.program.get());
+        EXPECT_TRUE(s) << s.message();
+        return out;
+    }();
+    return d;
+}
+
+cl::BufferHandle upload(const void* data, size_t bytes) {
+    static const float kEmpty[4] = {};
+    cl_int err = CL_SUCCESS;
+    cl::BufferHandle b(clCreateBuffer(device().context.get(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                                      bytes ? bytes : sizeof kEmpty, const_cast<void*>(bytes ? data : kEmpty), &err));
+    EXPECT_EQ(err, CL_SUCCESS);
+    return b;
+}
+
+// A level of a real synthesis (default database, drainage off): the region and its state after
+// the correction passes, from the recorded history; ceilings set to a finite value everywhere, which
+// the breach must replace.
+struct LevelState {
+    LevelRegion region, needed;
+    std::vector<PixelState> state;
+    synth::PassHistory other;  // another seed's result of the same level, as a recorded drained state
+};
+
+LevelState synthesizedLevel(int level, uint32_t seed) {
+    auto synthesizer = Synthesizer::create(test::defaultDatabase());
+    EXPECT_TRUE(synthesizer) << synthesizer.message();
+    SynthesisParams p;
+    p.drainage = Drainage::Off;
+    p.record_history = true;
+    const PixelWindow window{-211, 97, 300, 260};
+    auto run = [&](uint32_t s) {
+        p.seed = s;
+        auto out = synthesizer.value()->synthesize(window, p, 0, false);
+        EXPECT_TRUE(out) << out.message();
+        return out.value().history;
+    };
+    const auto history = run(seed), other = run(seed + 1);
+    const DatabaseLevel& db = test::defaultDatabase()->levels[level];
+    const SynthesisHistory::Level& l = history->levels[level];
+    LevelState out;
+    out.region = {l.x, l.y, l.width, l.height};
+    // What a finer level would read: the middle of the region, a third of it each way.
+    out.needed = {l.x + l.width / 3, l.y + l.height / 3, l.width / 3, l.height / 3};
+    const SynthesisHistory::Pass& last = l.passes.back();
+    out.state.resize(last.index.size());
+    for (size_t i = 0; i < out.state.size(); ++i) {
+        out.state[i].x = static_cast<float>(last.index[i] % static_cast<uint32_t>(db.width));
+        out.state[i].y = static_cast<float>(last.index[i] / static_cast<uint32_t>(db.width));
+        out.state[i].v = last.v[i];
+        out.state[i].ceiling = 1234.5f;
+    }
+    out.other = {other->levels[level].passes.back().index, other->levels[level].passes.back().v};
+    return out;
+}
+
+struct Case {
+    bool freeze = false, constrain = false, basins = false, whole_region = false;
+};
+
+// Runs both breaches on `level` of a synthesis and compares every pixel's state bit for bit.
+void expectSameBreach(int level, uint32_t seed, const Case& c) {
+    SCOPED_TRACE("level " + std::to_string(level) + ", seed " + std::to_string(seed));
+    Device& d = device();
+    ASSERT_TRUE(d.program);
+    const ExemplarDatabase& db = *test::defaultDatabase();
+    const DatabaseLevel& l = db.levels[level];
+    LevelState ls = synthesizedLevel(level, seed);
+    const LevelRegion& region = ls.region;
+    const size_t pixels = region.pixels();
+    const int radius = breachRadius(level);
+
+    // Frozen pixels: a disc of the region; they take the other seed's recorded state. Constraints:
+    // another disc (a point's blend sums), overlapping the first.
+    std::vector<uint8_t> coherence;
+    std::vector<float> blend;
+    if (c.freeze) coherence.assign(pixels, static_cast<uint8_t>(Coherence::Coherent));
+    if (c.constrain) blend.assign(4 * pixels, 0.0f);
+    for (int y = 0; y < region.height; ++y)
+        for (int x = 0; x < region.width; ++x) {
+            const size_t i = static_cast<size_t>(y) * region.width + x;
+            const float fx = static_cast<float>(x) / region.width, fy = static_cast<float>(y) / region.height;
+            if (c.freeze && std::hypot(fx - 0.45f, fy - 0.5f) < 0.2f) coherence[i] = static_cast<uint8_t>(Coherence::Frozen);
+            if (c.constrain && std::hypot(fx - 0.6f, fy - 0.45f) < 0.15f) blend[4 * i] = 1.0f, blend[4 * i + 1] = 2000.0f;
+        }
+    // Every exemplar with real basins: the regional lows are kept.
+    std::vector<uint8_t> basins = synth::exemplarsWithRealBasins(db);
+    if (c.basins) std::fill(basins.begin(), basins.end(), 1);
+    synth::DepthMargins margins;
+    synth::DrainageInputs in;
+    in.coherence = c.freeze ? &coherence : nullptr;
+    in.drained = c.freeze ? &ls.other : nullptr;
+    in.blend = c.constrain ? &blend : nullptr;
+    in.depth_margin = margins.at(db, level);
+    in.carve_to_edge = level >= synth::kBreachToEdgeFromLevel;
+    if (!c.whole_region) in.needed = ls.needed;
+    in.basin_exemplars = &basins;
+
+    std::vector<PixelState> host = ls.state;
+    const synth::BreachCounts counts = synth::breachPits(l, region, radius, in, host.data());
+    if (c.basins) {  // the basins keep some regional low the database's own flags would carve
+        std::vector<PixelState> carved = ls.state;
+        synth::DrainageInputs without = in;
+        const std::vector<uint8_t> own = synth::exemplarsWithRealBasins(db);
+        without.basin_exemplars = &own;
+        EXPECT_GT(synth::breachPits(l, region, radius, without, carved.data()).breached, counts.breached);
+    }
+
+    auto heights = upload(l.height_m.data(), l.height_m.size() * sizeof(float));
+    auto exemplar = upload(l.exemplar.data(), l.exemplar.size());
+    auto closed = upload(l.closed.data(), l.closed.size());
+    auto coherence_buffer = upload(coherence.data(), coherence.size());
+    auto blend_buffer = upload(blend.data(), blend.size() * sizeof(float));
+    auto state = upload(ls.state.data(), pixels * sizeof(PixelState));
+    const cl::DrainageLevelBuffers buffers{heights.get(), exemplar.get(), closed.get(), l.width,
+                                           static_cast<cl_uint>(l.pixelCount()), static_cast<cl_uint>(l.closed.size())};
+    cl::DeviceDrainageInputs on_device;
+    on_device.coherence = c.freeze ? coherence_buffer.get() : nullptr;
+    on_device.blend = c.constrain ? blend_buffer.get() : nullptr;
+    on_device.drained = in.drained;
+    on_device.depth_margin = in.depth_margin;
+    on_device.carve_to_edge = in.carve_to_edge;
+    on_device.needed = in.needed;
+    on_device.basin_exemplars = &basins;
+    const Status s = d.breach.run(d.queue.get(), buffers, region, radius, on_device, state.get());
+    ASSERT_TRUE(s) << s.message();
+    std::vector<PixelState> dev(pixels);
+    ASSERT_EQ(clEnqueueReadBuffer(d.queue.get(), state.get(), CL_TRUE, 0, pixels * sizeof(PixelState), dev.data(), 0,
+                                  nullptr, nullptr), CL_SUCCESS);
+
+    size_t lowered = 0, frozen_taken = 0;
+    for (size_t i = 0; i < pixels; ++i) {
+        lowered += host[i].v < ls.state[i].v;
+        frozen_taken += c.freeze && host[i].x != ls.state[i].x;
+        ASSERT_EQ(std::memcmp(&host[i], &dev[i], sizeof(PixelState)), 0)
+            << "pixel " << i % region.width << "," << i / region.width << " of " << region.width << "x" << region.height
+            << ": host (" << host[i].x << ", " << host[i].y << ", " << host[i].v << ", " << host[i].ceiling << "), device ("
+            << dev[i].x << ", " << dev[i].y << ", " << dev[i].v << ", " << dev[i].ceiling << ")";
+    }
+    std::printf("level %d radius %d, %dx%d: %zu pits, %zu breached, %zu pixels lowered%s\n", level, radius,
+                region.width, region.height, counts.pits, counts.breached, lowered,
+                c.freeze ? (", " + std::to_string(frozen_taken) + " frozen pixels took the recorded state").c_str() : "");
+    // Not vacuous: the level has pits that drain, and carving lowers pixels.
+    EXPECT_GT(counts.breached, 0u);
+    EXPECT_GT(lowered, 0u);
+    if (c.freeze) {
+        EXPECT_GT(frozen_taken, 0u);
+    }
+}
+
+TEST(DeviceBreach, EqualsTheReferenceAtEveryLevelAndRadius) {
+    for (int level = 0; level <= 4; ++level) expectSameBreach(level, 3, {});
+}
+
+TEST(DeviceBreach, EqualsTheReferenceOverTheWholeRegionWithAnotherSeed) {
+    for (int level : {0, 2, 4}) expectSameBreach(level, 8, {false, false, false, true});
+}
+
+TEST(DeviceBreach, EqualsTheReferenceWithFrozenAndConstrainedPixels) {
+    for (int level : {1, 3}) expectSameBreach(level, 5, {true, true, false, false});
+}
+
+TEST(DeviceBreach, EqualsTheReferenceWithExemplarsWithRealBasins) {
+    for (int level : {2, 4}) expectSameBreach(level, 6, {false, false, true, true});
+}
+
+}  // namespace
+}  // namespace terrasynth
