@@ -2,11 +2,12 @@
 // reference, synth::breachPits, bit for bit: every float of every pixel's state (S, V, ceiling),
 // on real synthesized levels of the default database at each level's radius, with and without
 // carving to the window's edge, with frozen pixels taking a recorded state, constrained pixels,
-// exemplars with real basins and a needed sub-window.
+// exemplars with real basins and a needed sub-window; and whole syntheses with either breach.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -215,6 +216,48 @@ TEST(DeviceBreach, EqualsTheReferenceWithFrozenAndConstrainedPixels) {
 
 TEST(DeviceBreach, EqualsTheReferenceWithExemplarsWithRealBasins) {
     for (int level : {2, 4}) expectSameBreach(level, 6, {false, false, true, true});
+}
+
+// A synthesizer whose breach runs on the device's kernels (TERRASYNTH_CL_BREACH=device) or the
+// host's reference on the mapped state (host), whatever the device.
+std::unique_ptr<Synthesizer> synthesizerBreachingOn(const char* where) {
+    ::setenv("TERRASYNTH_CL_BREACH", where, 1);
+    auto s = Synthesizer::create(test::defaultDatabase());
+    ::unsetenv("TERRASYNTH_CL_BREACH");
+    EXPECT_TRUE(s) << s.message();
+    return s ? std::move(s.value()) : nullptr;
+}
+
+TEST(DeviceBreach, WholeSynthesesEqualTheHostBreachBitForBit) {
+    // The default settings, then a coherent edit: a point constraint over a frozen box (frozen
+    // pixels take the recorded drained state, constrained ones are never carved).
+    auto device = synthesizerBreachingOn("device"), host = synthesizerBreachingOn("host");
+    ASSERT_TRUE(device && host);
+    const PixelWindow w{-300, 170, 320, 288};
+    SynthesisParams p;
+    p.seed = 4;
+    p.record_history = true;
+    auto on_device = device->synthesize(w, p), on_host = host->synthesize(w, p);
+    ASSERT_TRUE(on_device && on_host);
+    EXPECT_EQ(on_device.value().heights.heights, on_host.value().heights.heights);
+    SynthesisParams edited = p;
+    auto constraints = std::make_shared<SynthesisConstraints>();
+    constraints->points.push_back({-140.0, 300.0, on_host.value().heights.at(160, 130) + 400.0f, 0.0f, 0.0f, 70.0f});
+    edited.constraints = constraints;
+    edited.previous = on_host.value().history;
+    auto map = std::make_shared<CoherenceMap>();
+    map->x = w.x, map->y = w.y, map->width = w.width, map->height = w.height;
+    map->weights.assign(static_cast<size_t>(w.width) * w.height, Coherence::Coherent);
+    for (int y = 60; y < 200; ++y)
+        for (int x = 40; x < 160; ++x) map->weights[static_cast<size_t>(y) * w.width + x] = Coherence::Frozen;
+    for (int y = 0; y < w.height; ++y)
+        for (int x = 0; x < w.width; ++x)
+            if (std::hypot(x - 160.0, y - 130.0) < 70.0) map->weights[static_cast<size_t>(y) * w.width + x] = Coherence::Free;
+    edited.coherence = map;
+    auto edit_device = device->synthesize(w, edited), edit_host = host->synthesize(w, edited);
+    ASSERT_TRUE(edit_device && edit_host);
+    EXPECT_EQ(edit_device.value().heights.heights, edit_host.value().heights.heights);
+    EXPECT_NE(edit_host.value().heights.heights, on_host.value().heights.heights);  // the edit did act
 }
 
 }  // namespace

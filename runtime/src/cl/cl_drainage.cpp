@@ -24,19 +24,30 @@ size_t roundUp(size_t value, size_t multiple) { return (value + multiple - 1) / 
 
 // Bytes of search scratch per window cell: cost, mark, parent step, heap place, heap entry.
 constexpr size_t kSearchBytesPerCell = sizeof(cl_float) + sizeof(cl_uint) + 1 + sizeof(cl_int) + sizeof(cl_ulong);
-// GPU: searches per compute unit (a warp or two each), and the most scratch they may take. The
-// level-4 window (65^2 cells) takes 89 kB per search, so 192 MB hold about 2100 at once: more
-// than a 1024^2 synthesis has pits at that level. CPU: one search per core.
-constexpr size_t kGpuSearchesPerUnit = 64, kGpuSearchLocal = 64;
+// GPU: searches per compute unit (one warp), and the most scratch they may take. A level's few
+// long searches (up to 3600 cells settled at level 4 of a 1024^2 synthesis) set its time, so
+// they should not share a unit; the level-4 window (65^2 cells) takes 89 kB per search, and
+// 192 MB hold about 2100 at once, more than that level has pits. CPU: one search per core.
+constexpr size_t kGpuSearchesPerUnit = 32, kGpuSearchLocal = 32;
 constexpr size_t kGpuSearchScratchBytes = size_t{192} << 20;
+// breach counters: pits listed, pits taken, pixels carved.
+constexpr size_t kCounters = 3;
 // Serials are doubled into marks (reached / settled), so they stay below 2^31.
 constexpr cl_uint kSerialLimit = 0x7fffffffu;
 
+// Work-group shapes: per pixel, per row.
 const size_t kLocal2d[2] = {32, 2};
+constexpr size_t kRowLocal = 32;
 
 // Windows up to this radius take their minimum straight from the heights, wider ones from row
 // minima (as breachPits; only the work depends on it).
 constexpr int kDirectMinimumRadius = 8;
+
+Status run1d(cl_command_queue queue, cl_kernel kernel, size_t count, size_t local) {
+    const size_t global = roundUp(count, local);
+    TS_CL_CHECK(clEnqueueNDRangeKernel(queue, kernel, 1, nullptr, &global, &local, 0, nullptr, nullptr));
+    return Status::ok();
+}
 
 Status run2d(cl_command_queue queue, cl_kernel kernel, size_t width, size_t height) {
     if (width == 0 || height == 0) return Status::ok();
@@ -56,7 +67,8 @@ Status DeviceBreach::initialise(cl_context context, cl_device_id device, cl_prog
     context_ = context;
     cl_int err = CL_SUCCESS;
     for (auto [handle, name] : {std::pair{&prepare_, "breach_prepare"}, std::pair{&row_min_, "breach_row_min"},
-                                std::pair{&mark_, "breach_mark_pits"}, std::pair{&search_, "breach_search"},
+                                std::pair{&flag_, "breach_pit_flags"}, std::pair{&list_, "breach_list_pits"},
+                                std::pair{&search_, "breach_search"},
                                 std::pair{&apply_, "breach_apply"}}) {
         *handle->out() = clCreateKernel(program, name, &err);
         TS_CL_CHECK_NAMED(err, std::string("clCreateKernel(") + name + ")");
@@ -70,7 +82,7 @@ Status DeviceBreach::initialise(cl_context context, cl_device_id device, cl_prog
     auto placeholder = upload(nullptr, 0, "placeholder");
     if (!placeholder) return placeholder.status();
     placeholder_ = std::move(placeholder.value());
-    auto counters = upload(nullptr, 2 * sizeof(cl_int), "breach counters");
+    auto counters = upload(nullptr, kCounters * sizeof(cl_int), "breach counters");
     if (!counters) return counters.status();
     counters_ = std::move(counters.value());
     return Status::ok();
@@ -135,11 +147,14 @@ Status DeviceBreach::run(cl_command_queue queue, const DrainageLevelBuffers& lev
                        std::min(h - 1, y1 + radius + 1)};
     const bool any_pits = x0 <= x1 && y0 <= y1;
     const bool use_row_min = radius > kDirectMinimumRadius;
+    const bool use_fixed = inputs.coherence || inputs.blend;  // else nothing is protected
     for (auto [buffer, capacity, bytes, what] :
          {std::tuple{&z_, &z_bytes_, pixels * sizeof(cl_float), "breach heights"},
-          std::tuple{&fixed_, &fixed_bytes_, pixels, "breach protected pixels"},
+          std::tuple{&fixed_, &fixed_bytes_, use_fixed ? pixels : 0, "breach protected pixels"},
           std::tuple{&carve_, &carve_bytes_, pixels * sizeof(cl_int), "breach carves"},
           std::tuple{&pits_, &pits_bytes_, pixels * sizeof(cl_int), "breach pits"},
+          std::tuple{&pit_flags_, &pit_flags_bytes_, pixels, "breach pit flags"},
+          std::tuple{&carved_, &carved_bytes_, pixels * sizeof(cl_int), "breach carved pixels"},
           std::tuple{&row_minima_, &row_min_bytes_, use_row_min ? pixels * sizeof(cl_float) : 0, "breach row minima"}}) {
         Status s = reserve(*buffer, *capacity, bytes, what);
         if (!s) return s;
@@ -165,7 +180,7 @@ Status DeviceBreach::run(cl_command_queue queue, const DrainageLevelBuffers& lev
     cl_mem placeholder = placeholder_.get();
 
     ArgSetter prepare(prepare_.get(), "breach_prepare");
-    prepare(state)(region_arg)(z_.get())(fixed_.get())(carve_.get())(zone)(level.heights)(level.width)(
+    prepare(state)(region_arg)(z_.get())(fixed_.get())(cl_int{use_fixed ? 1 : 0})(carve_.get())(zone)(level.heights)(level.width)(
         inputs.coherence ? inputs.coherence : placeholder)(cl_int{inputs.coherence ? 1 : 0})(
         use_drained ? drained_index.get() : placeholder)(use_drained ? drained_v.get() : placeholder)(
         cl_int{use_drained ? 1 : 0})(inputs.blend ? inputs.blend : placeholder)(cl_int{inputs.blend ? 1 : 0});
@@ -174,24 +189,29 @@ Status DeviceBreach::run(cl_command_queue queue, const DrainageLevelBuffers& lev
     if (!s) return s;
 
     if (any_pits) {
-        const size_t zone_w = zone.x1 - zone.x0 + 1, zone_h = zone.y1 - zone.y0 + 1;
         if (use_row_min) {
             ArgSetter rows(row_min_.get(), "breach_row_min");
             rows(z_.get())(region_arg)(zone)(cl_int{radius})(row_minima_.get());
             if (!rows.status()) return rows.status();
-            s = run2d(queue, row_min_.get(), zone_w, zone_h);
+            s = run1d(queue, row_min_.get(), zone.y1 - zone.y0 + 1, kRowLocal);
             if (!s) return s;
         }
-        const cl_int zero = 0;  // pits listed, pits taken
-        TS_CL_CHECK(clEnqueueFillBuffer(queue, counters_.get(), &zero, sizeof zero, 0, 2 * sizeof(cl_int), 0, nullptr, nullptr));
-        ArgSetter mark(mark_.get(), "breach_mark_pits");
-        mark(z_.get())(state)(region_arg)(span)(level.closed)(level.closed_pixels)(level.width)(pits_.get())(counters_.get());
-        if (!mark.status()) return mark.status();
-        s = run2d(queue, mark_.get(), x1 - x0 + 1, y1 - y0 + 1);
+        const cl_int zero = 0;
+        TS_CL_CHECK(clEnqueueFillBuffer(queue, counters_.get(), &zero, sizeof zero, 0, kCounters * sizeof(cl_int), 0, nullptr, nullptr));
+        ArgSetter flag(flag_.get(), "breach_pit_flags");
+        // A database without the flags has a buffer of zeros (DrainageLevelBuffers::closed).
+        flag(z_.get())(state)(region_arg)(span)(level.closed)(std::max<cl_uint>(level.closed_pixels, 1))(level.width)(
+            pit_flags_.get());
+        if (!flag.status()) return flag.status();
+        s = run2d(queue, flag_.get(), x1 - x0 + 1, y1 - y0 + 1);
+        if (!s) return s;
+        ArgSetter list(list_.get(), "breach_list_pits");
+        list(pit_flags_.get())(region_arg)(span)(pits_.get())(counters_.get());
+        if (!list.status()) return list.status();
+        s = run1d(queue, list_.get(), y1 - y0 + 1, kRowLocal);
         if (!s) return s;
 
-        // Enough workers to keep the device busy, each with a window of scratch; on a CPU one per
-        // core, each with its cells together; on a GPU many, interleaved.
+        // Enough workers to keep the device busy, each with a window of scratch.
         const size_t side = 2 * static_cast<size_t>(radius) + 1, cells = side * side;
         size_t local = 1, workers = compute_units_;
         if (gpu_) {
@@ -208,23 +228,24 @@ Status DeviceBreach::run(cl_command_queue queue, const DrainageLevelBuffers& lev
                                             search_cells_ * sizeof(cl_uint), 0, nullptr, nullptr));
             serial_base_ = 1;
         }
-        const cl_ulong worker_stride = gpu_ ? 1 : cells, cell_stride = gpu_ ? workers : 1;
         ArgSetter search(search_.get(), "breach_search");
-        search(z_.get())(fixed_.get())(use_row_min ? row_minima_.get() : placeholder)(cl_int{use_row_min ? 1 : 0})(state)(
+        search(z_.get())(fixed_.get())(cl_int{use_fixed ? 1 : 0})(use_row_min ? row_minima_.get() : placeholder)(cl_int{use_row_min ? 1 : 0})(state)(
             region_arg)(cl_int{radius})(inputs.depth_margin)(cl_int{inputs.carve_to_edge ? 1 : 0})(level.exemplar)(
             level.atlas_pixels)(level.width)(basins_ ? basins_.get() : placeholder)(basin_count)(pits_.get())(
             counters_.get())(serial_base_)(cost_.get())(mark_cells_.get())(parent_.get())(heap_pos_.get())(heap_.get())(
-            worker_stride)(cell_stride)(carve_.get());
+            carve_.get())(carved_.get());
         if (!search.status()) return search.status();
-        TS_CL_CHECK(clEnqueueNDRangeKernel(queue, search_.get(), 1, nullptr, &workers, &local, 0, nullptr, nullptr));
+        s = run1d(queue, search_.get(), workers, local);
+        if (!s) return s;
         serial_base_ += static_cast<cl_uint>(searched);
+
+        ArgSetter apply(apply_.get(), "breach_apply");
+        apply(state)(z_.get())(carve_.get())(carved_.get())(counters_.get());
+        if (!apply.status()) return apply.status();
+        s = run1d(queue, apply_.get(), workers, local);
+        if (!s) return s;
     }
 
-    ArgSetter apply(apply_.get(), "breach_apply");
-    apply(state)(region_arg)(z_.get())(carve_.get());
-    if (!apply.status()) return apply.status();
-    s = run2d(queue, apply_.get(), w, h);
-    if (!s) return s;
     // The uploads above are released here while the kernels may still read them: OpenCL keeps a
     // buffer alive until the commands that use it have finished.
     return Status::ok();

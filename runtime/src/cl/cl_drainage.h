@@ -19,7 +19,9 @@ std::string drainageDefines();
 struct DrainageLevelBuffers {
     cl_mem heights = nullptr;   // float per atlas pixel (DatabaseLevel::height_m)
     cl_mem exemplar = nullptr;  // uchar per atlas pixel
-    cl_mem closed = nullptr;    // uchar per atlas pixel (DatabaseLevel::closed), closed_pixels of them
+    // uchar per atlas pixel (DatabaseLevel::closed), closed_pixels of them; at least one byte, zeros
+    // when the database has no flags (closed_pixels 0).
+    cl_mem closed = nullptr;
     cl_int width = 0;
     cl_uint atlas_pixels = 0, closed_pixels = 0;
 };
@@ -53,11 +55,12 @@ private:
     Result<BufferHandle> upload(const void* data, size_t bytes, const char* what);
 
     cl_context context_ = nullptr;
-    KernelHandle prepare_, row_min_, mark_, search_, apply_;
+    KernelHandle prepare_, row_min_, flag_, list_, search_, apply_;
     bool gpu_ = false;
     size_t compute_units_ = 1;
-    BufferHandle z_, fixed_, carve_, row_minima_, pits_, counters_, placeholder_;
-    size_t z_bytes_ = 0, fixed_bytes_ = 0, carve_bytes_ = 0, row_min_bytes_ = 0, pits_bytes_ = 0;
+    BufferHandle z_, fixed_, carve_, row_minima_, pits_, pit_flags_, carved_, counters_, placeholder_;
+    size_t z_bytes_ = 0, fixed_bytes_ = 0, carve_bytes_ = 0, row_min_bytes_ = 0, pits_bytes_ = 0, pit_flags_bytes_ = 0,
+           carved_bytes_ = 0;
     // The searches' scratch (drainage.cl, Scratch), for search_cells_ cells.
     BufferHandle cost_, mark_cells_, parent_, heap_pos_, heap_;
     size_t search_cells_ = 0;

@@ -81,6 +81,13 @@ public:
         }
         Status breach = breach_.initialise(context_.get(), device_.device, program_.get());
         if (!breach) return breach;
+        cl_device_type type = 0;
+        TS_CL_CHECK(clGetDeviceInfo(device_.device, CL_DEVICE_TYPE, sizeof type, &type, nullptr));
+        breach_on_device_ = (type & CL_DEVICE_TYPE_CPU) == 0;
+        if (const char* where = std::getenv("TERRASYNTH_CL_BREACH")) {
+            if (std::string(where) == "device") breach_on_device_ = true;
+            if (std::string(where) == "host") breach_on_device_ = false;
+        }
         localSize(local_);
         auto placeholder = upload(nullptr, 0);
         if (!placeholder) return placeholder.status();
@@ -307,8 +314,8 @@ private:
     }
 
     // Runs `edit` on the level's state in place, mapped. On a CPU device (PoCL) the map is the
-    // buffer's own memory: a read-back and a write-back would cost two copies of the state (17 MB
-    // each at level 0 of a 1024^2 synthesis); a GPU driver copies as they would.
+    // buffer's own memory: a read-back and a write-back cost two copies of the state (17 MB each
+    // at level 0 of a 1024^2 synthesis); a GPU driver copies as they would.
     template <class Edit>
     Status editMappedState(const synth::LevelRegion& region, Edit&& edit) {
         static_assert(sizeof(synth::PixelState) == sizeof(cl_float4), "state layout");
@@ -338,11 +345,19 @@ private:
         });
     }
 
-    // Breaching runs on the device (cl/cl_drainage.h), on the state and the level's coherence codes
-    // and constraint sums already there (beginLevel: the same arrays as `inputs`).
+    // Breaching (drainage_breach.h) runs on the device (cl/cl_drainage.h), on the state and the
+    // level's coherence codes and constraint sums already there (beginLevel: the same arrays as
+    // `inputs`): on a GPU the host's search took over 20 times the synthesis. On a CPU device
+    // (PoCL) the C++ reference runs on the mapped state instead, the buffer's own memory there:
+    // the same bits (cl_drainage_internal_test), in about half the kernels' time on 2 cores
+    // (docs/benchmarks.md, "Drainage cost"). TERRASYNTH_CL_BREACH=device|host overrides the choice.
     float depthMargin(int level) override { return depth_margins_.at(*db_, level); }
     const std::vector<uint8_t>& basinExemplars() override { return depth_margins_.basinExemplars(*db_); }
     Status drain(int level, const synth::LevelRegion& region, int radius, const synth::DrainageInputs& inputs) override {
+        if (!breach_on_device_)
+            return editMappedState(region, [&](synth::PixelState* state) {
+                synth::breachPits(db_->levels[level], region, radius, inputs, state, &breach_scratch_);
+            });
         const DeviceLevel& d = levels_[level];
         const cl::DrainageLevelBuffers buffers{d.heights.get(), d.exemplar.get(), d.closed.get(), d.width, d.pixels,
                                                d.closed_pixels};
@@ -413,6 +428,8 @@ private:
     size_t local_[2] = {32, 2};
     synth::DepthMargins depth_margins_;
     cl::DeviceBreach breach_;
+    bool breach_on_device_ = true;
+    synth::BreachScratch breach_scratch_;  // the host's breach (a CPU device)
     double bytes_per_pixel_ = 0.0;
 };
 
