@@ -2,7 +2,8 @@
 // reference, synth::breachPits, bit for bit: every float of every pixel's state (S, V, ceiling),
 // on real synthesized levels of the default database at each level's radius, with and without
 // carving to the window's edge, with frozen pixels taking a recorded state, constrained pixels,
-// exemplars with real basins and a needed sub-window; and whole syntheses with either breach.
+// exemplars with real basins and a needed sub-window; whole syntheses with either breach; and the
+// breach through the synthesizer with the default parameters.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -258,6 +259,24 @@ TEST(DeviceBreach, WholeSynthesesEqualTheHostBreachBitForBit) {
     ASSERT_TRUE(edit_device && edit_host);
     EXPECT_EQ(edit_device.value().heights.heights, edit_host.value().heights.heights);
     EXPECT_NE(edit_host.value().heights.heights, on_host.value().heights.heights);  // the edit did act
+}
+
+TEST(DeviceBreach, TheSynthesizerDrainsByDefaultAndOnTheDevice) {
+    // The default parameters breach (synthesizer.h): through the OpenCL backend the result equals
+    // the explicit setting's and differs from `off`'s. (Both backends: SynthesisDifferential in
+    // tests/cl_synthesis_test.cpp.)
+    EXPECT_EQ(SynthesisParams{}.drainage, Drainage::Breach);
+    auto cl = synthesizerBreachingOn("device");
+    ASSERT_TRUE(cl);
+    const PixelWindow w{100, -50, 192, 160};
+    SynthesisParams defaults, breach, off;
+    defaults.seed = breach.seed = off.seed = 21;
+    breach.drainage = Drainage::Breach;
+    off.drainage = Drainage::Off;
+    auto a = cl->synthesize(w, defaults), b = cl->synthesize(w, breach), o = cl->synthesize(w, off);
+    ASSERT_TRUE(a && b && o);
+    EXPECT_EQ(a.value().heights.heights, b.value().heights.heights);
+    EXPECT_NE(a.value().heights.heights, o.value().heights.heights);
 }
 
 }  // namespace
