@@ -2,8 +2,9 @@
 // reference, synth::breachPits, bit for bit: every float of every pixel's state (S, V, ceiling),
 // on real synthesized levels of the default database at each level's radius, with and without
 // carving to the window's edge, with frozen pixels taking a recorded state, constrained pixels,
-// exemplars with real basins and a needed sub-window; whole syntheses with either breach; and the
-// breach through the synthesizer with the default parameters.
+// exemplars with real basins and a needed sub-window; whole syntheses with either breach (the
+// default database, and shared DEMs with and without real basins); and the breach through the
+// synthesizer with the default parameters.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -221,9 +222,10 @@ TEST(DeviceBreach, EqualsTheReferenceWithExemplarsWithRealBasins) {
 
 // A synthesizer whose breach runs on the device's kernels (TERRASYNTH_CL_BREACH=device) or the
 // host's reference on the mapped state (host), whatever the device.
-std::unique_ptr<Synthesizer> synthesizerBreachingOn(const char* where) {
+std::unique_ptr<Synthesizer> synthesizerBreachingOn(const char* where,
+                                                    std::shared_ptr<const ExemplarDatabase> db = test::defaultDatabase()) {
     ::setenv("TERRASYNTH_CL_BREACH", where, 1);
-    auto s = Synthesizer::create(test::defaultDatabase());
+    auto s = Synthesizer::create(db);
     ::unsetenv("TERRASYNTH_CL_BREACH");
     EXPECT_TRUE(s) << s.message();
     return s ? std::move(s.value()) : nullptr;
@@ -259,6 +261,37 @@ TEST(DeviceBreach, WholeSynthesesEqualTheHostBreachBitForBit) {
     ASSERT_TRUE(edit_device && edit_host);
     EXPECT_EQ(edit_device.value().heights.heights, edit_host.value().heights.heights);
     EXPECT_NE(edit_host.value().heights.heights, on_host.value().heights.heights);  // the edit did act
+}
+
+TEST(DeviceBreach, SynthesesOfADuneFieldAndAFluvialExemplarEqualTheHostBreach) {
+    // Shared DEMs: orom_gobi, whose closed depressions are real (its regional lows are kept), and
+    // ttb_bigtujunga, fluvial (carved to the window's edge at the coarse levels), in one database;
+    // the default settings over a window at an odd origin. Heights and exemplar coordinates equal.
+    auto db = loadOrBuildDatabase({test::sharedExemplarsDir() + "/orom_gobi.png",
+                                   test::sharedExemplarsDir() + "/ttb_bigtujunga.png"},
+                                  DatabaseBuildOptions{}, test::tmpPath("drainage_gobi_bigtujunga.tsdb"));
+    ASSERT_TRUE(db) << db.message();
+    const std::vector<uint8_t> basins = synth::exemplarsWithRealBasins(*db.value());
+    ASSERT_EQ(basins.size(), 2u);
+    EXPECT_EQ(std::count(basins.begin(), basins.end(), 1), 1);  // both rules act
+    auto device = synthesizerBreachingOn("device", db.value()), host = synthesizerBreachingOn("host", db.value());
+    ASSERT_TRUE(device && host);
+    const PixelWindow w{-517, 333, 448, 320};
+    SynthesisParams p;
+    p.seed = 3;
+    auto on_device = device->synthesize(w, p, 0, true), on_host = host->synthesize(w, p, 0, true);
+    ASSERT_TRUE(on_device && on_host) << on_device.message() << on_host.message();
+    EXPECT_EQ(on_device.value().heights.heights, on_host.value().heights.heights);
+    EXPECT_EQ(on_device.value().source_x, on_host.value().source_x);
+    EXPECT_EQ(on_device.value().source_y, on_host.value().source_y);
+    EXPECT_EQ(on_device.value().source_exemplar, on_host.value().source_exemplar);
+    const auto& from = on_host.value().source_exemplar;
+    EXPECT_GT(std::count(from.begin(), from.end(), 0), 0);  // both exemplars are in the window
+    EXPECT_GT(std::count(from.begin(), from.end(), 1), 0);
+    p.drainage = Drainage::Off;
+    auto off = host->synthesize(w, p);
+    ASSERT_TRUE(off) << off.message();
+    EXPECT_NE(off.value().heights.heights, on_host.value().heights.heights);  // the breach did act
 }
 
 TEST(DeviceBreach, TheSynthesizerDrainsByDefaultAndOnTheDevice) {
