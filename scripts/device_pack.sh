@@ -7,13 +7,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${BUILD_DIR:-build}
 cmake --build "$build" -j2 --target synth_bench session_bench incremental_bench terrasynth_cli cl_synthesis_test cl_coherence_test \
-  cl_hardening_test cl_incremental_test project_session_test project_constraints_test >/dev/null
+  cl_drainage_internal_test cl_hardening_test cl_incremental_test project_session_test project_constraints_test >/dev/null
 rm -rf .device && mkdir -p .device/bin .device/tests .device/lib .device/libz
 cp "$build"/bin/synth_bench "$build"/bin/session_bench "$build"/bin/incremental_bench "$build"/bin/terrasynth .device/bin/
 # An earlier build's synth_bench to compare with in the same run: COMPARE_WITH=path/to/synth_bench.
 [ -z "${COMPARE_WITH:-}" ] || cp "$COMPARE_WITH" .device/bin/synth_bench_before
-for t in cl_synthesis_test cl_coherence_test cl_hardening_test cl_incremental_test project_session_test \
-         project_constraints_test; do cp "$build/tests/$t" .device/tests/; done
+for t in cl_synthesis_test cl_coherence_test cl_drainage_internal_test cl_hardening_test cl_incremental_test \
+         project_session_test project_constraints_test; do cp "$build/tests/$t" .device/tests/; done
 # Every shared library outside glibc and the compiler runtime; zlib apart, used only where missing.
 ldd .device/bin/* .device/tests/* | awk '/=> \//{print $3}' | sort -u |
   grep -v -E '/(libc|libm|libgcc_s|libstdc\+\+|ld-linux[^/]*)\.so' | while read -r lib; do
