@@ -397,6 +397,35 @@ TEST(EditSession, RepaintingAStrokeWithAnotherTypeChangesIt) {
     }
 }
 
+TEST(EditSession, SavedHeightsReopenWithTheMostPassesASynthesisRecords) {
+    // Breach (the default) and 4 correction passes: the coarsest level's history holds 7 passes
+    // (4, 2 more at the coarsest level, the drained state); the sidecar keeps all of them.
+    const std::string dir = test::scratchDir("session_most_passes");
+    Project project;
+    project.database = test::defaultDatabasePath();
+    project.width = project.height = kSize;
+    project.origin_x = kOriginX, project.origin_y = kOriginY;
+    project.synthesis.seed = 5;
+    project.synthesis.correction_passes = 4;
+    ASSERT_EQ(project.synthesis.drainage, Drainage::Breach);
+    ASSERT_TRUE(test::defaultDatabase());
+    ASSERT_TRUE(saveProject(project, dir + "/start.tsyn"));
+    auto session = openSession(dir + "/start.tsyn");
+    ASSERT_TRUE(session);
+    PointConstraint p;
+    p.x = kOriginX + 90, p.y = kOriginY + 80, p.height_m = 2800, p.radius_px = 36;
+    ASSERT_TRUE(session->addPoint(p));
+    ASSERT_TRUE(session->save(dir + "/edited.tsyn"));
+    auto reopened = Terrain::open(dir + "/edited.tsyn");
+    ASSERT_TRUE(reopened) << reopened.message();
+    for (const std::string& w : reopened.value()->warnings()) ADD_FAILURE() << w;
+    EXPECT_TRUE(reopened.value()->usesEditedHeights());
+    EXPECT_TRUE(sameBits(extentOf(**reopened).heights, session->heights().heights));
+    auto again = openSession(dir + "/edited.tsyn");
+    ASSERT_TRUE(again);
+    EXPECT_TRUE(sameBits(again->heights().heights, session->heights().heights));
+}
+
 TEST(EditSession, HeightSourceIsTheSessionAndTheWorldAroundIt) {
     const std::string dir = test::scratchDir("session_source");
     auto session = openSession(writeProject(dir, 11));

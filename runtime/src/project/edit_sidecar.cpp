@@ -157,6 +157,10 @@ Result<uint64_t> sidecarDigest(const std::string& bytes, const std::string& path
     return std::stoull(digest.get<std::string>(), nullptr, 16);
 }
 
+// The most passes a level's history holds (synth/synthesis_driver.h, historyPassesAt): up to 4
+// correction passes, 2 more at the coarsest level, and the breach's drained state.
+constexpr int64_t kMostHistoryPasses = 4 + 2 + 1;
+
 Result<EditSidecar> decodeEditSidecar(const std::string& bytes, const std::string& path, bool with_history) {
     size_t blobs_at = 0;
     auto parsed = readHeader(bytes, path, &blobs_at);
@@ -213,7 +217,7 @@ Result<EditSidecar> decodeEditSidecar(const std::string& bytes, const std::strin
             if (!v.is_number_integer()) return bad("history");
         const int64_t w = l[2].get<int64_t>(), hh = l[3].get<int64_t>(), passes = l[4].get<int64_t>();
         const int64_t limit = int64_t(1) << 29, x = l[0].get<int64_t>(), y = l[1].get<int64_t>();
-        if (w < 0 || hh < 0 || w > 65536 || hh > 65536 || passes < 0 || passes > 4 || x < -limit || x > limit ||
+        if (w < 0 || hh < 0 || w > 65536 || hh > 65536 || passes < 0 || passes > kMostHistoryPasses || x < -limit || x > limit ||
             y < -limit || y > limit)
             return bad("history");
         const size_t n = static_cast<size_t>(w) * hh;
