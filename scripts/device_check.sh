@@ -40,6 +40,7 @@ if [ ! -e "$home/data/exemplars" ]; then mkdir -p "$(dirname "$home")" && ln -sf
 build=$(cat "$pack/build_path" 2>/dev/null || echo "$home/build")
 mkdir -p "$build/pocl_cache" "$build/test_tmp"
 export TERRASYNTH_DATA_DIR=$root/data TERRASYNTH_BIN_DIR=$pack/bin TERRASYNTH_TEST_TMP=$build/test_tmp
+export TERRASYNTH_SHARED_EXEMPLARS=$pack/shared_exemplars
 export POCL_CACHE_DIR=$build/pocl_cache
 
 echo "== devices seen by terrasynth"
@@ -91,8 +92,10 @@ for where in device host; do
           if ($i ~ /^breach_ms=/) breach = value($i)
           if ($i ~ /^breach_over_off=/) ratio = value($i)
         }
-        printf "%s %s: synthesis (off) %.2f ms, breach %.2f ms, drainage %.2f ms = %.2f of the synthesis (pairs: %.3f)\n",
-               w, $1, off, breach, breach - off, (breach - off) / off, ratio
+        if (off > 0)
+          printf "%s %s: synthesis (off) %.2f ms, breach %.2f ms, drainage %.2f ms = %.2f of the synthesis (pairs: %.3f)\n",
+                 w, $1, off, breach, breach - off, (breach - off) / off, ratio
+        else print w, $0  # an error instead of counters
       }'
 done
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fills .device/ (ignored by git) with what scripts/device_check.sh runs on a lent GPU machine:
+# Fills .device/ (.gitignore) with what scripts/device_check.sh runs on a lent GPU machine:
 # the built OpenCL tests, synth_bench and the CLI, and the non-system shared libraries they load
 # (that machine runs another distribution and has no package registry).
 #   COMPARE_WITH=/path/to/older/synth_bench bash scripts/device_pack.sh   (optional)
@@ -14,6 +14,9 @@ cp "$build"/bin/synth_bench "$build"/bin/session_bench "$build"/bin/incremental_
 [ -z "${COMPARE_WITH:-}" ] || cp "$COMPARE_WITH" .device/bin/synth_bench_before
 for t in cl_synthesis_test cl_coherence_test cl_drainage_internal_test cl_hardening_test cl_incremental_test \
          project_session_test project_constraints_test; do cp "$build/tests/$t" .device/tests/; done
+# The shared DEMs cl_drainage_internal_test synthesizes (the machine has no ../shared).
+mkdir -p .device/shared_exemplars
+cp "${TERRASYNTH_SHARED_EXEMPLARS:-../shared/exemplars}"/{orom_gobi,ttb_bigtujunga}.{png,json} .device/shared_exemplars/
 # Every shared library outside glibc and the compiler runtime; zlib apart, used only where missing.
 ldd .device/bin/* .device/tests/* | awk '/=> \//{print $3}' | sort -u |
   grep -v -E '/(libc|libm|libgcc_s|libstdc\+\+|ld-linux[^/]*)\.so' | while read -r lib; do
@@ -22,5 +25,4 @@ ldd .device/bin/* .device/tests/* | awk '/=> \//{print $3}' | sort -u |
 # The binaries carry this checkout's absolute paths (data, build); device_check.sh links them there.
 pwd >.device/checkout_path
 (cd "$build" && pwd) >.device/build_path
-grep -qx '/.device/' .git/info/exclude 2>/dev/null || echo '/.device/' >>.git/info/exclude
 du -sh .device
