@@ -397,9 +397,10 @@ TEST(EditSession, RepaintingAStrokeWithAnotherTypeChangesIt) {
     }
 }
 
-TEST(EditSession, SavedHeightsReopenWithTheMostPassesASynthesisRecords) {
+TEST(EditSession, SavedHeightsReopenWithTheMostPassesButNotOnceDrainageIsSwitched) {
     // Breach (the default) and 4 correction passes: the coarsest level's history holds 7 passes
-    // (4, 2 more at the coarsest level, the drained state); the sidecar keeps all of them.
+    // (4, 2 more at the coarsest level, the drained state); the sidecar keeps all of them. Its
+    // digest holds the drainage: switched off, the project is synthesized afresh.
     const std::string dir = test::scratchDir("session_most_passes");
     Project project;
     project.database = test::defaultDatabasePath();
@@ -424,6 +425,16 @@ TEST(EditSession, SavedHeightsReopenWithTheMostPassesASynthesisRecords) {
     auto again = openSession(dir + "/edited.tsyn");
     ASSERT_TRUE(again);
     EXPECT_TRUE(sameBits(again->heights().heights, session->heights().heights));
+    // Switched to off by hand, the project no longer matches heights synthesized with breach.
+    auto edited = loadProject(dir + "/edited.tsyn");
+    ASSERT_TRUE(edited) << edited.message();
+    edited->synthesis.drainage = Drainage::Off;
+    ASSERT_TRUE(saveProject(*edited, dir + "/edited.tsyn"));
+    auto switched = Terrain::open(dir + "/edited.tsyn");
+    ASSERT_TRUE(switched) << switched.message();
+    EXPECT_FALSE(switched.value()->usesEditedHeights());
+    ASSERT_EQ(switched.value()->warnings().size(), 1u);
+    EXPECT_NE(switched.value()->warnings()[0].find("digest mismatch"), std::string::npos) << switched.value()->warnings()[0];
 }
 
 TEST(EditSession, HeightSourceIsTheSessionAndTheWorldAroundIt) {
