@@ -233,7 +233,8 @@ void addSynthCommand(CLI::App& app) {
     cmd->add_option("--preview", args->preview, "Write a hillshade preview PNG");
     cmd->add_option("--backend", args->backend, "opencl (default) or reference (plain C++)");
     cmd->add_option("--drainage", args->drainage,
-                    "off (no drainage step) or breach (carve closed pits so the terrain drains, issue 17); default: the project's");
+                    "breach (carve closed pits so the terrain drains) or off (no drainage step); default: the "
+                    "project's, breach when it names none");
     cmd->add_option("--coherent-with", args->coherent_with,
                     "Previous version of the project (.tsyn): re-synthesize only where the constraints changed (s5.3)");
     setAction(cmd, [args] { runSynth(*args); });

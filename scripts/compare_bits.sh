@@ -6,8 +6,10 @@
 #
 # Cases: the default project (OpenCL, 1024^2, seed 3; and the reference backend at 512^2), a 700x900
 # window at an odd origin, the default project with breach drainage, and two one-exemplar databases
-# (wn_mackay, glac_sthelens_10m) on both backends. Heightmaps are written as raw float32 (.f32) so
-# that no quantisation hides a difference; the exemplar-coordinate maps are compared too.
+# (wn_mackay, glac_sthelens_10m) on both backends, wn_mackay with breach drainage too. Every case
+# names its drainage, so builds from either side of the switch to breach by default compare alike.
+# Heightmaps are written as raw float32 (.f32) so that no quantisation hides a difference; the
+# exemplar-coordinate maps are compared too.
 # Each build builds its own databases (the database build is compared as well).
 # Exit 0: every case identical. Exit 1: a case differs (named). Exit 2: usage or a failed run.
 set -euo pipefail
@@ -32,14 +34,15 @@ run_build() {  # label bin_dir
   "$bin/terrasynth" db build "$shared/glac_sthelens_10m.png" -o "$out/sthelens.tsdb" -q
   # The project reads its database from the exemplar list; --db keeps each build on its own file.
   local s="$bin/terrasynth synth"
-  $s --db "$out/default.tsdb" -o "$out/default_cl.f32" --seed 3 --sources "$out/default_cl_src.png"
-  $s --db "$out/default.tsdb" -o "$out/default_ref.f32" --seed 3 --size 512x512 --backend reference
-  $s --db "$out/default.tsdb" -o "$out/window_cl.f32" --seed 3 --size 700x900 --origin 333,-517
+  $s --db "$out/default.tsdb" -o "$out/default_cl.f32" --seed 3 --sources "$out/default_cl_src.png" --drainage off
+  $s --db "$out/default.tsdb" -o "$out/default_ref.f32" --seed 3 --size 512x512 --backend reference --drainage off
+  $s --db "$out/default.tsdb" -o "$out/window_cl.f32" --seed 3 --size 700x900 --origin 333,-517 --drainage off
   $s --db "$out/default.tsdb" -o "$out/breach_cl.f32" --seed 5 --drainage breach
-  $s --db "$out/mackay.tsdb" -o "$out/mackay_cl.f32" --seed 3
-  $s --db "$out/mackay.tsdb" -o "$out/mackay_ref.f32" --seed 3 --size 384x384 --backend reference
-  $s --db "$out/sthelens.tsdb" -o "$out/sthelens_cl.f32" --seed 4
-  $s --db "$out/sthelens.tsdb" -o "$out/sthelens_ref.f32" --seed 4 --size 384x384 --backend reference
+  $s --db "$out/mackay.tsdb" -o "$out/mackay_cl.f32" --seed 3 --drainage off
+  $s --db "$out/mackay.tsdb" -o "$out/mackay_ref.f32" --seed 3 --size 384x384 --backend reference --drainage off
+  $s --db "$out/mackay.tsdb" -o "$out/mackay_breach_cl.f32" --seed 3 --drainage breach
+  $s --db "$out/sthelens.tsdb" -o "$out/sthelens_cl.f32" --seed 4 --drainage off
+  $s --db "$out/sthelens.tsdb" -o "$out/sthelens_ref.f32" --seed 4 --size 384x384 --backend reference --drainage off
 }
 
 run_build before "$before" >"$work/before.log" 2>&1 || { echo "before build's run failed: $work/before.log" >&2; exit 2; }

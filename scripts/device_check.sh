@@ -47,6 +47,7 @@ if [ ! -e "$home/data/exemplars" ]; then mkdir -p "$(dirname "$home")" && ln -sf
 build=$(cat "$pack/build_path" 2>/dev/null || echo "$home/build")
 mkdir -p "$build/pocl_cache" "$build/test_tmp"
 export TERRASYNTH_DATA_DIR=$root/data TERRASYNTH_BIN_DIR=$pack/bin TERRASYNTH_TEST_TMP=$build/test_tmp
+export TERRASYNTH_SHARED_EXEMPLARS=$pack/shared_exemplars
 export POCL_CACHE_DIR=$build/pocl_cache
 
 echo "== devices seen by terrasynth"
@@ -68,7 +69,8 @@ run_test() {
 }
 [ -n "${DEVICE_CHECK_SKIP_TESTS:-}" ] || run_test cl_synthesis_test  # builds the default database that the others load
 [ -n "${DEVICE_CHECK_SKIP_TESTS:-}" ] ||
-for t in cl_coherence_test cl_hardening_test cl_incremental_test project_session_test project_constraints_test; do
+for t in cl_coherence_test cl_drainage_internal_test cl_hardening_test cl_incremental_test project_session_test \
+         project_constraints_test; do
   run_test $t &
 done
 wait
@@ -79,12 +81,37 @@ timeout 240 "$pack/bin/synth_bench" --benchmark_filter='OpenCL|LiftPoints' --ben
   --benchmark_report_aggregates_only=true --benchmark_out="$OUT/synth_bench.json" --benchmark_out_format=json 2>&1 |
   grep -E 'median|Run on|CPU|Mpixel' | grep -v -E 'mean|stddev|cv'
 
+echo "== drainage: breach over off on the device (BM_BreachOverOff: alternating pairs, medians)"
+# The drainage's cost is breach_ms - off_ms: its kernels (kernels/drainage.cl) and the margins'
+# extra correction work; the goal is at most the synthesis itself (off_ms). TERRASYNTH_CL_BREACH=host
+# runs the host's search on the mapped state instead, for comparison.
+for where in device host; do
+  TERRASYNTH_CL_BREACH=$where timeout 240 "$pack/bin/synth_bench" --benchmark_filter='BreachOverOff' 2>&1 |
+    awk -v w=$where '
+      function value(s) {  # a counter as printed: 12.3, 1.23k
+        sub(/^[a-z_]+=/, "", s)
+        if (s ~ /k$/) return substr(s, 1, length(s) - 1) * 1000
+        return s + 0
+      }
+      /^BM_BreachOverOff/ {
+        for (i = 2; i <= NF; ++i) {
+          if ($i ~ /^off_ms=/) off = value($i)
+          if ($i ~ /^breach_ms=/) breach = value($i)
+          if ($i ~ /^breach_over_off=/) ratio = value($i)
+        }
+        if (off > 0)
+          printf "%s %s: synthesis (off) %.2f ms, breach %.2f ms, drainage %.2f ms = %.2f of the synthesis (pairs: %.3f)\n",
+                 w, $1, off, breach, breach - off, (breach - off) / off, ratio
+        else print w, $0  # an error instead of counters
+      }'
+done
+
 if [ -x "$pack/bin/synth_bench_before" ]; then
   echo "== before | now, 1024^2, three interleaved rounds (median of 5 each)"
   for round in 1 2 3; do
     for b in synth_bench_before synth_bench; do
       printf '%s %s: ' "$round" "$b"
-      timeout 120 "$pack/bin/$b" --benchmark_filter='OpenCL(Breach)?/1024' --benchmark_repetitions=5 \
+      timeout 120 "$pack/bin/$b" --benchmark_filter='BM_SynthesizeOpenCL[A-Za-z]*/1024' --benchmark_repetitions=5 \
         --benchmark_report_aggregates_only=true 2>&1 | awk '/median/{printf "%s %s %s  ", $1, $2, $3} END{print ""}'
     done
   done
@@ -103,17 +130,18 @@ timeout 150 "$pack/bin/session_bench" --benchmark_filter='PointDrag|UndoDragStep
 timeout 100 "$pack/bin/incremental_bench" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true 2>&1 |
   awk '$1 ~ /median$/ {print $1, $2, $3}'
 
-echo "== larger extents (CLI, default project, drainage off; synthesis time as printed)"
+echo "== larger extents (CLI, default project, drainage off and breach; synthesis time as printed)"
 for size in 2048 4096 8192; do
-  for i in 1 2; do
-    timeout 120 "$pack/bin/terrasynth" synth "$root/data/default.tsyn" --size ${size}x$size --seed 3 -o /tmp/big.f32 2>&1 |
-      grep -o 'synthesis.*' | sed "s/^/${size}^2: /"
+  for drainage in off breach off breach; do
+    timeout 120 "$pack/bin/terrasynth" synth "$root/data/default.tsyn" --size ${size}x$size --seed 3 --drainage $drainage \
+      -o /tmp/big.f32 2>&1 | grep -o 'synthesis.*' | sed "s/^/${size}^2 $drainage: /"
   done
 done
 
 echo "== default project, 1024^2, seed 3, as float32 (compared bit for bit with PoCL here)"
+# Here: terrasynth synth data/default.tsyn -o cpu.f32 --seed 3 [--drainage off], then cmp.
 ( cd "$root/data" && "$pack/bin/terrasynth" synth default.tsyn -o "$OUT/gpu_default.f32" --seed 3 &&
-  "$pack/bin/terrasynth" synth default.tsyn -o "$OUT/gpu_default_breach.f32" --seed 3 --drainage breach ) 2>&1 | tail -4
+  "$pack/bin/terrasynth" synth default.tsyn -o "$OUT/gpu_default_off.f32" --seed 3 --drainage off ) 2>&1 | tail -4
 echo "== done; test binaries that failed: $(grep -L -x 0 "$tests_dir"/*.rc 2>/dev/null | xargs -r -n1 basename | tr '\n' ' ')"
 }
 

@@ -182,6 +182,8 @@ TEST(EditorWorker, TheTerrainRebuildsOnlyTilesTouchingTheChangedWindow) {
     const GridFrame f = view->frame;
     const osg::Vec3d centre(f.worldX(kSize / 2), f.worldY(kSize / 2), 0.5 * (view->min_height_m + view->max_height_m));
     const osg::Vec3d eye = centre + osg::Vec3d(0.0, -12000.0, 25000.0);
+    // Until the view has converged (tiles of 32 samples cost their margins' work many times over,
+    // the breach's, the default, above all); waitUntil's deadline only stops a hung run.
     auto settle = [&] {
         int frames = 0;
         return test::waitUntil([&] {

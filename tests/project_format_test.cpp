@@ -123,5 +123,29 @@ TEST(ProjectFormat, SavedProjectsReadBackTheSame) {
     EXPECT_NE(s.message().find("constraints"), std::string::npos) << s.message();
 }
 
+TEST(ProjectFormat, DrainageIsBreachUnlessTheProjectSaysOff) {
+    // Every front end reads its synthesis settings from a project: one that names no drainage
+    // breaches (SynthesisParams' default), "off" switches it off, and a save keeps the choice.
+    auto parse = [](const std::string& synthesis) {
+        return parseProject("{\"database\": \"x.tsdb\", \"synthesis\": {" + synthesis + "}}", "d.tsyn", ".");
+    };
+    auto unnamed = parse("\"seed\": 3"), off = parse("\"drainage\": \"off\""), breach = parse("\"drainage\": \"breach\"");
+    ASSERT_TRUE(unnamed && off && breach);
+    EXPECT_EQ(unnamed->synthesis.drainage, Drainage::Breach);
+    EXPECT_EQ(off->synthesis.drainage, Drainage::Off);
+    EXPECT_EQ(breach->synthesis.drainage, Drainage::Breach);
+    auto bad = parse("\"drainage\": \"fill\"");
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.message().find("synthesis.drainage"), std::string::npos) << bad.message();
+    auto shipped = loadProject(test::dataDir() + "/default.tsyn");
+    ASSERT_TRUE(shipped) << shipped.message();
+    EXPECT_EQ(shipped->synthesis.drainage, Drainage::Breach);
+    const std::string dir = test::scratchDir("format_drainage");
+    ASSERT_TRUE(saveProject(*off, dir + "/off.tsyn"));
+    auto again = loadProject(dir + "/off.tsyn");
+    ASSERT_TRUE(again) << again.message();
+    EXPECT_EQ(again->synthesis.drainage, Drainage::Off);
+}
+
 }  // namespace
 }  // namespace terrasynth

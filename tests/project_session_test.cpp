@@ -397,6 +397,46 @@ TEST(EditSession, RepaintingAStrokeWithAnotherTypeChangesIt) {
     }
 }
 
+TEST(EditSession, SavedHeightsReopenWithTheMostPassesButNotOnceDrainageIsSwitched) {
+    // Breach (the default) and 4 correction passes: the coarsest level's history holds 7 passes
+    // (4, 2 more at the coarsest level, the drained state); the sidecar keeps all of them. Its
+    // digest holds the drainage: switched off, the project is synthesized afresh.
+    const std::string dir = test::scratchDir("session_most_passes");
+    Project project;
+    project.database = test::defaultDatabasePath();
+    project.width = project.height = kSize;
+    project.origin_x = kOriginX, project.origin_y = kOriginY;
+    project.synthesis.seed = 5;
+    project.synthesis.correction_passes = 4;
+    ASSERT_EQ(project.synthesis.drainage, Drainage::Breach);
+    ASSERT_TRUE(test::defaultDatabase());
+    ASSERT_TRUE(saveProject(project, dir + "/start.tsyn"));
+    auto session = openSession(dir + "/start.tsyn");
+    ASSERT_TRUE(session);
+    PointConstraint p;
+    p.x = kOriginX + 90, p.y = kOriginY + 80, p.height_m = 2800, p.radius_px = 36;
+    ASSERT_TRUE(session->addPoint(p));
+    ASSERT_TRUE(session->save(dir + "/edited.tsyn"));
+    auto reopened = Terrain::open(dir + "/edited.tsyn");
+    ASSERT_TRUE(reopened) << reopened.message();
+    for (const std::string& w : reopened.value()->warnings()) ADD_FAILURE() << w;
+    EXPECT_TRUE(reopened.value()->usesEditedHeights());
+    EXPECT_TRUE(sameBits(extentOf(**reopened).heights, session->heights().heights));
+    auto again = openSession(dir + "/edited.tsyn");
+    ASSERT_TRUE(again);
+    EXPECT_TRUE(sameBits(again->heights().heights, session->heights().heights));
+    // Switched to off by hand, the project no longer matches heights synthesized with breach.
+    auto edited = loadProject(dir + "/edited.tsyn");
+    ASSERT_TRUE(edited) << edited.message();
+    edited->synthesis.drainage = Drainage::Off;
+    ASSERT_TRUE(saveProject(*edited, dir + "/edited.tsyn"));
+    auto switched = Terrain::open(dir + "/edited.tsyn");
+    ASSERT_TRUE(switched) << switched.message();
+    EXPECT_FALSE(switched.value()->usesEditedHeights());
+    ASSERT_EQ(switched.value()->warnings().size(), 1u);
+    EXPECT_NE(switched.value()->warnings()[0].find("digest mismatch"), std::string::npos) << switched.value()->warnings()[0];
+}
+
 TEST(EditSession, HeightSourceIsTheSessionAndTheWorldAroundIt) {
     const std::string dir = test::scratchDir("session_source");
     auto session = openSession(writeProject(dir, 11));

@@ -75,11 +75,13 @@ constexpr int kInitialPatchSize = 24;
 // Bounded reach: a pixel depends on heights within 2 * breachRadius(level) + 1
 // pixels, which the window plan adds to that level's margin, so windows stay bit-identical to
 // larger windows. Frozen pixels and pixels under point or curve constraints are never carved (a
-// path may end at a lower one). Cost: every level's region grows by the reach and the search runs
-// on the host: roughly a quarter more synthesis time than Off on CPUs, and on a GPU, where the
-// kernels are fast, the host-side search takes many times their time (docs/benchmarks.md has the
-// figures); which is why Off is the default. Off: no drainage step; everything else (where
-// synthesis starts, kInitialPatchSize above) is the same for both.
+// path may end at a lower one). Breach is the default: without it, one-exemplar syntheses of
+// fluvial terrain leave 8-27 percentage points more of their area in closed depressions than their
+// exemplars (docs/realism.md). Cost: every level's region grows by the reach, and the breach's
+// search runs on the OpenCL device (on a CPU device, the same search on the host; both backends
+// give the same bits): docs/benchmarks.md, "Drainage cost", has the figures on CPUs and on a GPU.
+// Off: no drainage step; everything else (where synthesis starts, kInitialPatchSize above) is the
+// same for both.
 enum class Drainage : uint8_t { Off = 0, Breach = 1 };
 // Search radius of the breach at `level`, in pixels of that level (docs/realism.md, "Drainage").
 int breachRadius(int level);
@@ -120,7 +122,7 @@ struct SynthesisParams {
     // recorded history holds the uncorrected state for each of their passes. 0 (default) = a full
     // synthesis; 0..16.
     int preview_levels = 0;
-    Drainage drainage = Drainage::Off;  // Breach: roughly a quarter more time on CPUs (above)
+    Drainage drainage = Drainage::Breach;  // Off: no drainage step (above)
 };
 
 struct SynthesisOutput {

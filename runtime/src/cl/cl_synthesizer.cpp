@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "cl/cl_drainage.h"
 #include "cl/cl_runtime.h"
 #include "core/hash.h"
 #include "cl/cl_synthesizer.h"
@@ -27,8 +28,9 @@ struct RegionArg {
 RegionArg toArg(const synth::LevelRegion& r) { return {r.x, r.y, r.width, r.height}; }
 
 struct DeviceLevel {
-    BufferHandle appearance, candidates, exemplar, rects, heights, types, type_seeds, seed_ranges;
+    BufferHandle appearance, candidates, exemplar, rects, heights, types, type_seeds, seed_ranges, closed;
     cl_int width = 0;
+    cl_uint pixels = 0, closed_pixels = 0;
     cl_float4 offset{}, scale{};
 };
 
@@ -66,8 +68,9 @@ public:
                                     std::to_string(kPointToleranceSlope) + "f -DBLEND_SLOPE=" +
                                     std::to_string(kPointBlendSlope) + "f -DCOHERENT_WEIGHT=" +
                                     std::to_string(kCoherentWeight) + "f -DINIT_PATCH_SIZE=" +
-                                    std::to_string(kInitialPatchSize) + " -DLAYOUT_WEIGHT=" + std::to_string(synth::kLayoutWeight) + "f";
-        auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl"}, defines);
+                                    std::to_string(kInitialPatchSize) + " -DLAYOUT_WEIGHT=" + std::to_string(synth::kLayoutWeight) + "f" +
+                                    cl::drainageDefines();
+        auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl", "drainage.cl"}, defines);
         if (!program) return program.status();
         program_ = std::move(program.value());
         for (auto [handle, name] : {std::pair{&init_cells_, "init_cells"}, std::pair{&init_, "init_level"},
@@ -75,6 +78,15 @@ public:
                                     std::pair{&correct_, "correct"}, std::pair{&resolve_, "resolve"}}) {
             *handle->out() = clCreateKernel(program_.get(), name, &err);
             TS_CL_CHECK_NAMED(err, std::string("clCreateKernel(") + name + ")");
+        }
+        Status breach = breach_.initialise(context_.get(), device_.device, program_.get());
+        if (!breach) return breach;
+        cl_device_type type = 0;
+        TS_CL_CHECK(clGetDeviceInfo(device_.device, CL_DEVICE_TYPE, sizeof type, &type, nullptr));
+        breach_on_device_ = (type & CL_DEVICE_TYPE_CPU) == 0;
+        if (const char* where = std::getenv("TERRASYNTH_CL_BREACH")) {
+            if (std::string(where) == "device") breach_on_device_ = true;
+            if (std::string(where) == "host") breach_on_device_ = false;
         }
         localSize(local_);
         auto placeholder = upload(nullptr, 0);
@@ -137,8 +149,9 @@ private:
             auto types = upload(l.type.data(), l.type.size());
             auto type_seeds = upload(table.seeds.data(), table.seeds.size() * sizeof(uint32_t));
             auto seed_ranges = upload(table.ranges.data(), table.ranges.size() * sizeof(int32_t));
+            auto closed = upload(l.closed.data(), l.closed.size());
             for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &types, &type_seeds,
-                            &seed_ranges})
+                            &seed_ranges, &closed})
                 if (!*r) return r->status();
             d.types = std::move(types.value());
             d.type_seeds = std::move(type_seeds.value());
@@ -148,7 +161,10 @@ private:
             d.exemplar = std::move(exemplar.value());
             d.rects = std::move(rect_buffer.value());
             d.heights = std::move(heights.value());
+            d.closed = std::move(closed.value());
             d.width = l.width;
+            d.pixels = static_cast<cl_uint>(l.pixelCount());
+            d.closed_pixels = static_cast<cl_uint>(l.closed.size());
             for (int m = 0; m < 4; ++m) d.offset.s[m] = l.appearance_offset[m], d.scale.s[m] = l.appearance_scale[m];
             levels_.push_back(std::move(d));
         }
@@ -298,8 +314,8 @@ private:
     }
 
     // Runs `edit` on the level's state in place, mapped. On a CPU device (PoCL) the map is the
-    // buffer's own memory: a read-back and a write-back cost two copies of the state per drained
-    // level (17 MB each at level 0 of a 1024^2 synthesis); a GPU driver copies as they would.
+    // buffer's own memory: a read-back and a write-back cost two copies of the state (17 MB each
+    // at level 0 of a 1024^2 synthesis); a GPU driver copies as they would.
     template <class Edit>
     Status editMappedState(const synth::LevelRegion& region, Edit&& edit) {
         static_assert(sizeof(synth::PixelState) == sizeof(cl_float4), "state layout");
@@ -329,13 +345,31 @@ private:
         });
     }
 
-    // Breaching runs on the host (drainage_breach.h).
+    // Breaching (drainage_breach.h) runs on the device (cl/cl_drainage.h), on the state and the
+    // level's coherence codes and constraint sums already there (beginLevel: the same arrays as
+    // `inputs`): on a GPU the host's search took over 20 times the synthesis. On a CPU device
+    // (PoCL) the C++ reference runs on the mapped state instead, the buffer's own memory there:
+    // the same bits (cl_drainage_internal_test), in about half the kernels' time on 2 cores
+    // (docs/benchmarks.md, "Drainage cost"). TERRASYNTH_CL_BREACH=device|host overrides the choice.
     float depthMargin(int level) override { return depth_margins_.at(*db_, level); }
     const std::vector<uint8_t>& basinExemplars() override { return depth_margins_.basinExemplars(*db_); }
     Status drain(int level, const synth::LevelRegion& region, int radius, const synth::DrainageInputs& inputs) override {
-        return editMappedState(region, [&](synth::PixelState* state) {
-            synth::breachPits(db_->levels[level], region, radius, inputs, state, &breach_scratch_);
-        });
+        if (!breach_on_device_)
+            return editMappedState(region, [&](synth::PixelState* state) {
+                synth::breachPits(db_->levels[level], region, radius, inputs, state, &breach_scratch_);
+            });
+        const DeviceLevel& d = levels_[level];
+        const cl::DrainageLevelBuffers buffers{d.heights.get(), d.exemplar.get(), d.closed.get(), d.width, d.pixels,
+                                               d.closed_pixels};
+        cl::DeviceDrainageInputs on_device;
+        on_device.coherence = has_coherence_ ? coherence_.get() : nullptr;
+        on_device.blend = use_blend_ ? blend_.get() : nullptr;
+        on_device.drained = inputs.drained;
+        on_device.depth_margin = inputs.depth_margin;
+        on_device.carve_to_edge = inputs.carve_to_edge;
+        on_device.needed = inputs.needed;
+        on_device.basin_exemplars = inputs.basin_exemplars;
+        return breach_.run(queue_.get(), buffers, region, radius, on_device, current_.get());
     }
 
     Status resolve(int level, const synth::LevelRegion& region, const synth::LevelRegion& out, SynthesisOutput& output,
@@ -393,7 +427,9 @@ private:
     size_t current_capacity_ = 0, next_capacity_ = 0, cells_capacity_ = 0;
     size_t local_[2] = {32, 2};
     synth::DepthMargins depth_margins_;
-    synth::BreachScratch breach_scratch_;
+    cl::DeviceBreach breach_;
+    bool breach_on_device_ = true;
+    synth::BreachScratch breach_scratch_;  // the host's breach (a CPU device)
     double bytes_per_pixel_ = 0.0;
 };
 

@@ -101,7 +101,9 @@ uint64_t editDigest(const Project& p, const ExemplarDatabase& db, const Constrai
                                  std::to_string(p.height) + "|" + std::to_string(q.seed) + "," +
                                  std::to_string(jitter_bits) + "," + std::to_string(q.correction_passes) + "," +
                                  std::to_string(q.coarsest_level) + "," + std::to_string(q.first_constrained_level) +
-                                 "," + std::to_string(p.hold_point_heights) + "|";
+                                 "," + std::to_string(p.hold_point_heights) +
+                                 // Only breach is named, so sidecars saved when off was the default keep their digests.
+                                 (q.drainage == Drainage::Breach ? ",breach" : "") + "|";
     uint64_t h = detail::fnv1a(settings.data(), settings.size());
     h = detail::fnv1a(constraints.json.data(), constraints.json.size(), h);
     for (const auto& m : constraints.masks) {

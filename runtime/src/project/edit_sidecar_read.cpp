@@ -11,6 +11,7 @@
 #include "core/json_reader.h"
 #include "core/number_text.h"
 #include "project/edit_sidecar.h"
+#include "synth/synthesis_driver.h"
 #include "terrasynth/limits.h"
 
 namespace terrasynth::project {
@@ -169,14 +170,15 @@ Status checkHeights(const std::vector<float>& values, const std::string& field) 
 Status readHistoryLevel(const json& l, const std::string& field, SynthesisHistory::Level* out) {
     const int64_t origin = limits::kMaxWindowOrigin;
     const std::string rule = "must be [x, y, width, height, passes]: x and y within +-" + std::to_string(origin) +
-                             ", width and height 0..65536, passes 0..4";
+                             ", width and height 0..65536, passes 0.." +
+                             std::to_string(synth::kMaxHistoryPassesPerLevel);
     if (!l.is_array() || l.size() != 5) return Status::error(field + ": " + rule);
     for (const json& v : l)
         if (!v.is_number_integer() || (v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX)))
             return Status::error(field + ": " + rule);
     const int64_t x = l[0].get<int64_t>(), y = l[1].get<int64_t>(), w = l[2].get<int64_t>(), h = l[3].get<int64_t>(),
                   passes = l[4].get<int64_t>();
-    if (w < 0 || h < 0 || w > 65536 || h > 65536 || passes < 0 || passes > 4 || x < -origin || x > origin ||
+    if (w < 0 || h < 0 || w > 65536 || h > 65536 || passes < 0 || passes > synth::kMaxHistoryPassesPerLevel || x < -origin || x > origin ||
         y < -origin || y > origin)
         return Status::error(field + ": " + rule);
     *out = {static_cast<int>(x), static_cast<int>(y), static_cast<int>(w), static_cast<int>(h),

@@ -101,7 +101,7 @@ Result<Project> parseProject(const std::string& text, const std::string& file, c
         q.coarsest_level = static_cast<int>(s.integer("coarsest_level", q.coarsest_level, -1, 12));
         q.first_constrained_level = static_cast<int>(s.integer("first_constrained_level", q.first_constrained_level, 0, 12));
         p.hold_point_heights = s.boolean("hold_point_heights", p.hold_point_heights);
-        // Issue 17: "off" (the default) | "breach" (docs/realism.md, "Drainage").
+        // "breach" (the default, SynthesisParams) | "off" (docs/realism.md, "Drainage").
         const std::string drainage = s.string("drainage", q.drainage == Drainage::Off ? "off" : "breach");
         if (drainage == "off") q.drainage = Drainage::Off;
         else if (drainage == "breach") q.drainage = Drainage::Breach;

@@ -59,7 +59,7 @@ public:
             for (int dx = -1; dx <= 1; ++dx) {
                 if (!dx && !dy) continue;
                 neighbour_[k] = dy * stride_ + dx, region_step_[k] = dy * w_ + dx;
-                length_[k++] = dx && dy ? 1.41421356f : 1.0f;
+                length_[k++] = dx && dy ? kBreachDiagonal : 1.0f;
             }
         cost_.resize(cells_);
         parent_.resize(cells_);
@@ -122,7 +122,7 @@ public:
                 const int n = cell + neighbour_[k];
                 if (isDone(n)) continue;  // settled, on the ring or outside the region
                 const int gn = g + region_step_[k];
-                const float step = (std::max(0.0f, z[gn] - bottom) + 1e-3f) * length_[k];
+                const float step = (std::max(0.0f, z[gn] - bottom) + kBreachStepCost) * length_[k];
                 if (reached_[n] != search_ || d + step < cost_[n]) {
                     reach(n, d + step);
                     parent_[n] = cell;
@@ -413,7 +413,8 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
                 const float k = static_cast<float>(path.size() - 1);
                 for (size_t i = 0; i < path.size(); ++i) {
                     const float line = top - (top - bottom) * (static_cast<float>(i) / k);
-                    out.carves.push_back({path[i], std::min(z[path[i]], line)});
+                    // + 0.0f: a carve of -0 is +0, so the lowest carve is one value whatever the order.
+                    out.carves.push_back({path[i], std::min(z[path[i]], line) + 0.0f});
                 }
             }
         }

@@ -64,6 +64,9 @@ private:
 
 // How far below the pit a path to the window's edge ends at least (DrainageInputs::carve_to_edge), metres.
 constexpr float kEdgeDrop = 1.0f;
+// A step's cost: (metres above the pit + kBreachStepCost) times its length, 1 or kBreachDiagonal.
+constexpr float kBreachStepCost = 1e-3f;
+constexpr float kBreachDiagonal = 1.41421356f;
 // The finest level whose breach carves to the window's edge: the regional lows form at the coarse
 // levels; levels 2-4 is what was measured (docs/realism.md, "Carving to the window's edge").
 constexpr int kBreachToEdgeFromLevel = 2;
@@ -103,10 +106,10 @@ struct BreachScratch {
 };
 
 // Breaches the region's pits (see above), lowering V along carved paths and setting every pixel's
-// ceiling. Runs on the host for both backends: the search is sparse and irregular (about one pixel
-// in a hundred is a pit), and the same code on both sides keeps them bit-identical. Pits are
-// searched on up to 8 threads (hardware concurrency); paths combine by the lowest carve, so the
-// result does not depend on the thread count. A search that cannot reach `depth_margin` below its
+// ceiling. The reference backend's breach, and the reference of the OpenCL backend's
+// (cl/cl_drainage.h, kernels/drainage.cl), which repeats it bit for bit on the device. Pits are
+// searched on up to 8 threads (hardware concurrency); paths combine by the lowest carve (a carve
+// of -0 counts as +0), so the result does not depend on the thread count. A search that cannot reach `depth_margin` below its
 // pit (the window's lowest height says so) stops at the first lower pixel, and one with nothing
 // lower in reach (carve_to_edge) at the first edge cell it settles: where an exhausted search would
 // have ended. Pixels outside `inputs.needed` grown by `radius` may miss carves from
