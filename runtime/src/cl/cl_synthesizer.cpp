@@ -329,6 +329,15 @@ private:
         });
     }
 
+    // The offset relaxation runs on the host, on the mapped state (offset_relaxation.h): a few
+    // stencil iterations over one level, cheap beside its correction passes on CPU devices.
+    Status relax(int level, const synth::LevelRegion& region, int iterations,
+                 const synth::RelaxationInputs& inputs) override {
+        const double spacing = db_->meters_per_pixel * std::ldexp(1.0, level);
+        return editMappedState(region, [&](synth::PixelState* state) {
+            synth::relaxOffsets(db_->levels[level], region, spacing, iterations, inputs, state);
+        });
+    }
     // Breaching runs on the host (drainage_breach.h).
     float depthMargin(int level) override { return depth_margins_.at(*db_, level); }
     const std::vector<uint8_t>& basinExemplars() override { return depth_margins_.basinExemplars(*db_); }
