@@ -24,7 +24,7 @@ DatabaseLevel exemplarLevel(const std::string& stem, double* spacing) {
     level.width = field.width, level.height = field.height;
     level.height_m = field.heights;
     level.rects = {{0, 0, field.width, field.height}};
-    *spacing = field.meters_per_pixel;
+    *spacing = field.meters_per_pixel_x;
     return level;
 }
 
@@ -55,7 +55,8 @@ TEST(OffsetRelaxation, TheStepWhereTwoPatchesOfGentleGroundMeetCloses) {
     double spacing = 0.0;
     const DatabaseLevel level = exemplarLevel("orom_appalachians", &spacing);
     constexpr int kWidth = 96, kHeight = 64, kSeam = 48;
-    // West of the seam one piece of the exemplar, east of it another, 25 m higher.
+    // West of the seam one piece of the exemplar, east of it another (other ground, hundreds of metres
+    // apart in height, and V 25 m higher): a seam the exemplar does not have.
     std::vector<PixelState> state = patch(kWidth, kHeight, 60, 300, 0.0f);
     const std::vector<PixelState> east = patch(kWidth, kHeight, 340 - kSeam, 120, 25.0f);
     for (int y = 0; y < kHeight; ++y)
