@@ -129,7 +129,7 @@ struct SynthesisParams {
     // (flat valley floors, lakes and fjords gain a few degrees of slope) and leaves the height step
     // between two patches' sources as a seam; relaxed, flats stay flat across patches and steep
     // ground keeps its own relief. Pixels under point or curve constraints, frozen pixels and
-    // drainage channels from the level above are not moved. Bounded reach: a few to 16 pixels of
+    // drainage channels from the level above are not moved. Bounded reach: 4 to 8 pixels of
     // each level, added to its margin (windows stay bit-identical to larger windows); on CPUs a few
     // percent of the synthesis time (docs/realism.md, "Offset relaxation"). false: the paper's V.
     bool relax_offsets = true;

@@ -160,7 +160,7 @@ void relaxBand(const DatabaseLevel& db, const LevelRegion& region, float gentle,
 
 }  // namespace
 
-int relaxationIterations(int level) { return level == 0 ? 4 : 16; }
+int relaxationIterations(int level) { return level == 0 ? 4 : 8; }
 
 void relaxOffsets(const DatabaseLevel& db, const LevelRegion& region, double spacing_m, int iterations,
                   const RelaxationInputs& inputs, PixelState* state) {

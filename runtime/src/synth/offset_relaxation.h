@@ -45,7 +45,8 @@ constexpr float kRelaxFlatSlopeDegrees = 5.0f;
 constexpr float kRelaxOffsetStiffness = 0.001f;
 
 // Jacobi iterations at `level` when relaxation is on: 4 at level 0 (its detail is the exemplars'
-// own finest octave, and each iteration widens level 0's margin by a pixel), 16 above. Also the
+// own finest octave, and each iteration widens level 0's margin by a pixel), 8 above (16 were no
+// better, at twice the margins: docs/realism.md). Also the
 // reach in pixels of that level that synthesis_driver.cpp adds to the level's margin.
 int relaxationIterations(int level);
 
