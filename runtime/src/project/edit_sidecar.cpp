@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "layers/layer_json.h"
+#include "synth/synthesis_driver.h"
 #include "terrasynth/layers.h"
 
 namespace terrasynth::project {
@@ -213,7 +214,7 @@ Result<EditSidecar> decodeEditSidecar(const std::string& bytes, const std::strin
             if (!v.is_number_integer()) return bad("history");
         const int64_t w = l[2].get<int64_t>(), hh = l[3].get<int64_t>(), passes = l[4].get<int64_t>();
         const int64_t limit = int64_t(1) << 29, x = l[0].get<int64_t>(), y = l[1].get<int64_t>();
-        if (w < 0 || hh < 0 || w > 65536 || hh > 65536 || passes < 0 || passes > 4 || x < -limit || x > limit ||
+        if (w < 0 || hh < 0 || w > 65536 || hh > 65536 || passes < 0 || passes > synth::kMaxHistoryPassesPerLevel || x < -limit || x > limit ||
             y < -limit || y > limit)
             return bad("history");
         const size_t n = static_cast<size_t>(w) * hh;
@@ -251,7 +252,10 @@ uint64_t editDigest(const Project& p, const ExemplarDatabase& db, const Constrai
                                  std::to_string(p.height) + "|" + std::to_string(q.seed) + "," +
                                  std::to_string(jitter_bits) + "," + std::to_string(q.correction_passes) + "," +
                                  std::to_string(q.coarsest_level) + "," + std::to_string(q.first_constrained_level) +
-                                 "," + std::to_string(p.hold_point_heights) + "|";
+                                 "," + std::to_string(p.hold_point_heights) +
+                                 // Named only when on, so sidecars saved before the relaxation existed keep their
+                                 // digests when it is off.
+                                 (q.relax_offsets ? ",relaxed" : "") + "|";
     uint64_t h = fnv1a(settings.data(), settings.size());
     h = fnv1a(constraints.json.data(), constraints.json.size(), h);
     for (const auto& m : constraints.masks) {
