@@ -1,6 +1,6 @@
 // terrasynth synth <project.tsyn | --db db.tsdb> -o out.png|out.f32|out.exr|out.tif [--size WxH] [--origin X,Y]
 //                  [--seed N] [--level L] [--sources src.png] [--preview hillshade.png] [--backend opencl|reference]
-//                  [--drainage off|breach]
+//                  [--drainage off|breach] [--relax-offsets on|off]
 //                  [--coherent-with previous.tsyn]
 #include <algorithm>
 #include <cctype>
@@ -25,6 +25,7 @@ namespace {
 
 struct SynthArgs {
     std::string project, database, output, sources, preview, size, origin, coherent_with, backend = "opencl", drainage;
+    std::string relax_offsets;
     int64_t seed = -1;
     int level = 0;
 };
@@ -119,6 +120,9 @@ Result<Project> projectWithOverrides(const std::string& project_path, const Synt
     if (args.drainage == "off") project.synthesis.drainage = Drainage::Off;
     else if (args.drainage == "breach") project.synthesis.drainage = Drainage::Breach;
     else if (!args.drainage.empty()) return Status::error("--drainage must be off or breach, got \"" + args.drainage + "\"");
+    if (args.relax_offsets == "on" || args.relax_offsets == "off") project.synthesis.relax_offsets = args.relax_offsets == "on";
+    else if (!args.relax_offsets.empty())
+        return Status::error("--relax-offsets must be on or off, got \"" + args.relax_offsets + "\"");
     return project;
 }
 
@@ -235,6 +239,8 @@ void addSynthCommand(CLI::App& app) {
     cmd->add_option("--drainage", args->drainage,
                     "breach (carve closed pits so the terrain drains) or off (no drainage step); default: the "
                     "project's, breach when it names none");
+    cmd->add_option("--relax-offsets", args->relax_offsets,
+                    "on (height steps made the exemplars' own across patches) or off (the paper's offsets); default: the project's");
     cmd->add_option("--coherent-with", args->coherent_with,
                     "Previous version of the project (.tsyn): re-synthesize only where the constraints changed (s5.3)");
     setAction(cmd, [args] { runSynth(*args); });

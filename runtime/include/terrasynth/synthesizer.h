@@ -26,7 +26,7 @@ namespace terrasynth {
 // Coherence (paper s5.3): the results of a previous synthesis, every level and every pass, kept so
 // the next synthesis can prefer them. Recorded when SynthesisParams::record_history is set.
 // Memory: 8 bytes per pixel per pass per level (about 21 bytes per output pixel for 2 passes; one
-// more pass with drainage).
+// more pass each with offset relaxation and with drainage).
 struct SynthesisHistory {
     struct Pass {
         std::vector<uint32_t> index;  // chosen atlas pixel per region pixel
@@ -34,8 +34,9 @@ struct SynthesisHistory {
     };
     struct Level {
         int x = 0, y = 0, width = 0, height = 0;  // region of the global grid at this level
-        // One per correction pass; with drainage, one more: the state after breaching, which frozen
-        // pixels take so they stay bit-identical.
+        // One per correction pass; with offset relaxation, one more: the relaxed state; with
+        // drainage, one more: the state after breaching. Frozen pixels take these so they stay
+        // bit-identical.
         std::vector<Pass> passes;
     };
     std::vector<Level> levels;  // indexed by level; empty levels were not synthesized
@@ -123,6 +124,17 @@ struct SynthesisParams {
     // synthesis; 0..16.
     int preview_levels = 0;
     Drainage drainage = Drainage::Breach;  // Off: no drainage step (above)
+    // Offset relaxation (beyond the paper): after each level's correction passes, and before its
+    // drainage, the offsets V (eq. 1-2) are re-chosen with the sources S fixed so that every pixel's
+    // height steps to its 8 neighbours are the exemplar's own steps at their sources, gentle steps
+    // weighted most. The paper's V, carried smoothly through a patch, tilts what the patch copies
+    // (flat valley floors, lakes and fjords gain a few degrees of slope) and leaves the height step
+    // between two patches' sources as a seam; relaxed, flats stay flat across patches and steep
+    // ground keeps its own relief. Pixels under point or curve constraints, frozen pixels and
+    // drainage channels from the level above are not moved. Bounded reach: 4 to 8 pixels of
+    // each level, added to its margin (windows stay bit-identical to larger windows); on CPUs a few
+    // percent of the synthesis time (docs/realism.md, "Offset relaxation"). false: the paper's V.
+    bool relax_offsets = true;
 };
 
 struct SynthesisOutput {

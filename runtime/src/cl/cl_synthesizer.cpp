@@ -345,6 +345,15 @@ private:
         });
     }
 
+    // The offset relaxation runs on the host, on the mapped state (offset_relaxation.h): a few
+    // stencil iterations over one level, cheap beside its correction passes on CPU devices.
+    Status relax(int level, const synth::LevelRegion& region, int iterations,
+                 const synth::RelaxationInputs& inputs) override {
+        const double spacing = db_->meters_per_pixel * std::ldexp(1.0, level);
+        return editMappedState(region, [&](synth::PixelState* state) {
+            synth::relaxOffsets(db_->levels[level], region, spacing, iterations, inputs, state);
+        });
+    }
     // Breaching (drainage_breach.h) runs on the device (cl/cl_drainage.h), on the state and the
     // level's coherence codes and constraint sums already there (beginLevel: the same arrays as
     // `inputs`): on a GPU the host's search took over 20 times the synthesis. On a CPU device

@@ -102,8 +102,9 @@ uint64_t editDigest(const Project& p, const ExemplarDatabase& db, const Constrai
                                  std::to_string(jitter_bits) + "," + std::to_string(q.correction_passes) + "," +
                                  std::to_string(q.coarsest_level) + "," + std::to_string(q.first_constrained_level) +
                                  "," + std::to_string(p.hold_point_heights) +
-                                 // Only breach is named, so sidecars saved when off was the default keep their digests.
-                                 (q.drainage == Drainage::Breach ? ",breach" : "") + "|";
+                                 // Only breach and the relaxation are named, so sidecars saved when both were off keep
+                                 // their digests.
+                                 (q.drainage == Drainage::Breach ? ",breach" : "") + (q.relax_offsets ? ",relaxed" : "") + "|";
     uint64_t h = detail::fnv1a(settings.data(), settings.size());
     h = detail::fnv1a(constraints.json.data(), constraints.json.size(), h);
     for (const auto& m : constraints.masks) {

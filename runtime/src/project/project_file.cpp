@@ -101,6 +101,8 @@ Result<Project> parseProject(const std::string& text, const std::string& file, c
         q.coarsest_level = static_cast<int>(s.integer("coarsest_level", q.coarsest_level, -1, 12));
         q.first_constrained_level = static_cast<int>(s.integer("first_constrained_level", q.first_constrained_level, 0, 12));
         p.hold_point_heights = s.boolean("hold_point_heights", p.hold_point_heights);
+        // Offset relaxation (synthesizer.h), on unless false.
+        q.relax_offsets = s.boolean("relax_offsets", q.relax_offsets);
         // "breach" (the default, SynthesisParams) | "off" (docs/realism.md, "Drainage").
         const std::string drainage = s.string("drainage", q.drainage == Drainage::Off ? "off" : "breach");
         if (drainage == "off") q.drainage = Drainage::Off;
@@ -143,6 +145,7 @@ std::string projectToJson(const Project& p, const std::string& folder) {
           {"coarsest_level", p.synthesis.coarsest_level},
           {"first_constrained_level", p.synthesis.first_constrained_level},
           {"drainage", p.synthesis.drainage == Drainage::Off ? "off" : "breach"},
+          {"relax_offsets", p.synthesis.relax_offsets},
           {"hold_point_heights", p.hold_point_heights}}},
         {"constraints", sectionJson(p.constraints_json)},
         {"layers", sectionJson(p.layers_json)},

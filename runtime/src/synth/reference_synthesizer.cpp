@@ -71,6 +71,11 @@ public:
     }
     float depthMargin(int level) override { return margins_.at(db_, level); }
     const std::vector<uint8_t>& basinExemplars() override { return margins_.basinExemplars(db_); }
+    Status relax(int level, const LevelRegion& region, int iterations, const RelaxationInputs& inputs) override {
+        relaxOffsets(db_.levels[level], region, db_.meters_per_pixel * std::ldexp(1.0, level), iterations, inputs,
+                     current_.data());
+        return Status::ok();
+    }
     Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) override {
         breachPits(db_.levels[level], region, radius, inputs, current_.data());
         return Status::ok();

@@ -76,12 +76,15 @@ int passesAt(const SynthesisParams& params, int level, int coarsest) {
 }
 
 int historyPassesAt(const SynthesisParams& params, int level, int coarsest) {
-    return passesAt(params, level, coarsest) + (params.drainage == Drainage::Breach ? 1 : 0);
+    return passesAt(params, level, coarsest) + (params.relax_offsets ? 1 : 0) +
+           (params.drainage == Drainage::Breach ? 1 : 0);
 }
 
 std::vector<int> extraMargins(const SynthesisParams& params, int coarsest) {
     std::vector<int> margins(coarsest + 1, 0);
     margins[coarsest] = kSubpassReach * 4 * (passesAt(params, coarsest, coarsest) - params.correction_passes);
+    if (params.relax_offsets)
+        for (int level = 0; level <= coarsest; ++level) margins[level] += relaxationIterations(level);
     if (params.drainage == Drainage::Breach)
         for (int level = 0; level <= coarsest; ++level) margins[level] += 2 * breachRadius(level) + 1;
     return margins;
@@ -148,7 +151,7 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         const int passes = passesAt(params, level, coarsest);
         if (history) {
             history->levels[level] = {region.x, region.y, region.width, region.height, {}};
-            history->levels[level].passes.resize(passes + (drain ? 1 : 0));
+            history->levels[level].passes.resize(historyPassesAt(params, level, coarsest));
         }
         if (level < output_level + params.preview_levels && level < coarsest) {
             // A preview level: the upsampled state, with what is not Free kept from the last pass.
@@ -180,10 +183,21 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
                 if (!s) return s;
             }
         }
+        int recorded = passes;  // the history's next pass
+        if (params.relax_offsets) {
+            // Offset relaxation (offset_relaxation.h); frozen pixels take the previous synthesis's
+            // relaxed state.
+            const PassHistory relaxed = previousPass(params.previous.get(), level, recorded, region);
+            Status s = steps.relax(level, region, relaxationIterations(level),
+                                   {&coherence, &relaxed, &level_constraints.blend});
+            if (s && history) s = steps.recordPass(level, region, history->levels[level].passes[recorded]);
+            if (!s) return s;
+            ++recorded;
+        }
         if (!drain) return Status::ok();
         // Drainage (drainage_breach.h): breach the level's pits; frozen pixels take the previous
         // synthesis's drained state.
-        const PassHistory drained = previousPass(params.previous.get(), level, passes, region);
+        const PassHistory drained = previousPass(params.previous.get(), level, recorded, region);
         Status s = steps.drain(level, region, breachRadius(level),
                                {&coherence, &drained, &level_constraints.blend, steps.depthMargin(level),
                                 level >= kBreachToEdgeFromLevel, plan.needed[level], &steps.basinExemplars()});

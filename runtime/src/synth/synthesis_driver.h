@@ -5,6 +5,7 @@
 #include "constraints/constraint_fields.h"
 #include "synth/coherence_fields.h"
 #include "synth/drainage_breach.h"
+#include "synth/offset_relaxation.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/synthesizer.h"
 
@@ -13,13 +14,14 @@ namespace terrasynth::synth {
 // Correction passes of `level` when `coarsest` is the coarsest synthesized level: the coarsest one
 // gets kCoarsestLevelExtraPasses more (initial_patches.h).
 int passesAt(const SynthesisParams& params, int level, int coarsest);
-// Passes a SynthesisHistory records at `level`: the correction passes, plus the drained state when
-// drainage is on (synthesizer.h).
+// Passes a SynthesisHistory records at `level`: the correction passes, plus the relaxed state when
+// offsets are relaxed, plus the drained state when drainage is on (synthesizer.h).
 int historyPassesAt(const SynthesisParams& params, int level, int coarsest);
 // Pixels each level reads beyond the plan's uniform correction margin: the coarsest level's extra
-// passes, and the drainage step's reach (drainage_breach.h); planSynthesis's extra_margin.
+// passes, the offset relaxation's reach (offset_relaxation.h) and the drainage step's reach
+// (drainage_breach.h); planSynthesis's extra_margin.
 std::vector<int> extraMargins(const SynthesisParams& params, int coarsest);
-// Most passes any level records (4 correction passes + the extra ones + drainage).
+// Most passes any level records (4 correction passes + the extra ones + relaxation + drainage).
 constexpr int kMaxHistoryPassesPerLevel = 8;
 
 class SynthesisSteps {
@@ -45,6 +47,8 @@ public:
     // Corrects the pixels of one parity class at least `inset` pixels inside the region: the ring
     // outside would be spoiled by the margin anyway (synthesis_plan.h), so it is not computed.
     virtual Status correct(int level, const LevelRegion& region, int parity_x, int parity_y, int inset) = 0;
+    // Offset relaxation (offset_relaxation.h) after the correction passes, before drainage.
+    virtual Status relax(int level, const LevelRegion& region, int iterations, const RelaxationInputs& inputs) = 0;
     // Drainage (drainage_breach.h): breaches the level's pits after its correction passes.
     virtual Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) = 0;
     // breachDepthMargin of a level, cached by the backend.
