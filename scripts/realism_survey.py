@@ -77,16 +77,29 @@ def judge(args, exemplar_png, out, src, mpp):
     return {k: d[k] for k in LIMITS}, usage
 
 
+def discriminate(args, exemplar_png, out, src, mpp):
+    """The classifier two-sample test (discriminator.py): the copy-aware ROC AUC of logistic
+    regression on 128 px crops (0.5: cannot tell the synthesis from its exemplar) and the three
+    descriptors that separate most, with their real and synthetic medians."""
+    dj = out[:-4] + '_discriminator.json'
+    run(['/usr/bin/python3', os.path.join(REALISM, 'discriminator.py'), 'compare', out, exemplar_png,
+         '--size', f'{args.size}x{args.size}', '--mpp', str(mpp), '--sources', src, '--json', dj])
+    d = json.load(open(dj))
+    top = [(t['feature'], t['real_median'], t['synth_median']) for t in d['top']]
+    return {'auc_lr_src': d['src']['auc_lr'], 'auc_rf_src': d['src']['auc_rf'], 'auc_lr': d['auc_lr'], 'top': top}
+
+
 def one(args, name, seed):
     png = os.path.join(args.exemplars, name + '.png')
     db = os.path.join(args.work, f'{name}.tsdb')
     out, src, ms = synthesize(args, db, name, seed)
     mpp = json.load(open(src[:-4] + '.json'))['exemplar_meters_per_pixel']
     figures, usage = judge(args, png, out, src, mpp)
+    disc = discriminate(args, png, out, src, mpp) if args.discriminator else None
     if not args.keep:
         os.remove(out)
     return {'exemplar': name, 'seed': seed, 'synthesis_ms': ms, 'figures': figures,
-            'flattest_share': usage['exemplars'][0]['flattest_share'],
+            'flattest_share': usage['exemplars'][0]['flattest_share'], 'discriminator': disc,
             'pass': {k: figures[k] <= LIMITS[k] for k in LIMITS}}
 
 
@@ -100,8 +113,13 @@ def survey_single(args, names, seeds):
             r = f.result()
             rows.append(r)
             fig = ' '.join(f'{SHORT[k]}={v:.3g}{"" if r["pass"][k] else "!"}' for k, v in r['figures'].items())
+            disc = ''
+            if r['discriminator']:
+                d = r['discriminator']
+                disc = f' AUC_src={d["auc_lr_src"]:.2f} top: ' + ', '.join(
+                    f'{f}({a:.3g} vs {b:.3g})' for f, a, b in d['top'])
             print(f'{r["exemplar"]:24s} seed {r["seed"]}: {fig} flat30={100 * r["flattest_share"]:.1f}% '
-                  f'({r["synthesis_ms"]:.0f} ms)', flush=True)
+                  f'({r["synthesis_ms"]:.0f} ms){disc}', flush=True)
     return rows
 
 
@@ -146,6 +164,14 @@ def summary(rows):
                      f'{cell("log10_area_m2/iqr")} | {cell("fill_pct")} | {100 * min(fl):.0f}-{100 * max(fl):.0f}% | '
                      f'{"16 ok" if ok16 else "16 no"}, {"17 ok" if ok17 else "17 no"} |')
     lines.append(f'\nissue 16 goal missed by {fails16} of {len(by)}; issue 17 goal missed by {fails17}')
+    aucs = {n: [r['discriminator']['auc_lr_src'] for r in rs if r.get('discriminator')] for n, rs in by.items()}
+    if any(aucs.values()):
+        every = sorted(a for v in aucs.values() for a in v)
+        worst = max(every)
+        median = every[len(every) // 2] if len(every) % 2 else 0.5 * (every[len(every) // 2 - 1] + every[len(every) // 2])
+        lines.append('\n| exemplar | copy-aware AUC per seed |\n|---|---|')
+        lines += [f'| {n} | {" ".join(f"{a:.2f}" for a in aucs[n])} |' for n in sorted(aucs)]
+        lines.append(f'\ndiscriminator: median {median:.3f}, worst {worst:.2f} over {len(every)} syntheses')
     return '\n'.join(lines)
 
 
@@ -164,6 +190,8 @@ def main():
     p.add_argument('--rebuild', action='store_true', help='rebuild cached databases')
     p.add_argument('--keep', action='store_true', help='keep the synthesized heightfields')
     p.add_argument('--jobs', type=int, default=2)
+    p.add_argument('--discriminator', action='store_true',
+                   help='also run discriminator.py (needs python3-sklearn): copy-aware AUC per synthesis')
     p.add_argument('--json', default='')
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
