@@ -101,7 +101,7 @@ Result<Project> parseProject(const std::string& text, const std::string& file, c
         q.coarsest_level = static_cast<int>(s.integer("coarsest_level", q.coarsest_level, -1, 12));
         q.first_constrained_level = static_cast<int>(s.integer("first_constrained_level", q.first_constrained_level, 0, 12));
         p.hold_point_heights = s.boolean("hold_point_heights", p.hold_point_heights);
-        // Offset relaxation (synthesizer.h), on unless false.
+        // Offset relaxation (synthesizer.h), off unless true.
         q.relax_offsets = s.boolean("relax_offsets", q.relax_offsets);
         // "breach" (the default, SynthesisParams) | "off" (docs/realism.md, "Drainage").
         const std::string drainage = s.string("drainage", q.drainage == Drainage::Off ? "off" : "breach");
