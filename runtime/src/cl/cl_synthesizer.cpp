@@ -215,7 +215,7 @@ private:
     }
 
     Status upsample(int level, const synth::LevelRegion& parent, const synth::LevelRegion& child, float jitter,
-                    uint32_t seed) override {
+                    uint32_t seed, const TypePaint* paint) override {
         Status s = reserve(next_, next_capacity_, child.pixels());
         if (!s) return s;
         const DeviceLevel& p = levels_[level + 1];
@@ -230,8 +230,7 @@ private:
         if (!s) return s;
         // Exemplars too small for the coarser levels enter here (synth/initial_patches.h).
         if (!synth::entersAt(entry_levels_, level)) return Status::ok();
-        const synth::ShareLayout layout =
-            synth::shareLayout(*db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed);
+        const synth::ShareLayout layout = synth::entryLayout(*db_, entry_levels_, level, child, seed, paint);
         auto layout_buffer = upload(layout.exemplar.data(), layout.exemplar.size());
         if (!layout_buffer) return layout_buffer.status();
         return patchLevel(level, child, seed, layout_buffer.value().get(), layout.entering, true);

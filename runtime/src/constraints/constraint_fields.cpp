@@ -99,14 +99,18 @@ LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, in
         if (!constraints->curves.empty()) addCurveSums(constraints->curves, level, region, meters_per_pixel0, false, out.blend);
         if (!anyBlend(out.blend)) out.blend.clear();
     }
-    const TypePaint& paint = constraints->types;
-    if (paint.empty()) return out;
+    out.target_sets = paintedTargetSets(constraints->types, level, region);
+    return out;
+}
+
+std::vector<uint32_t> paintedTargetSets(const TypePaint& paint, int level, const core::LevelRegion& region) {
+    if (paint.empty()) return {};
     const int64_t cell = int64_t(1) << level;
     // Level-0 bounds of the region; skip the work when the painting is elsewhere.
     const int64_t x0 = region.x * cell, y0 = region.y * cell;
     const int64_t x1 = (int64_t(region.x) + region.width) * cell, y1 = (int64_t(region.y) + region.height) * cell;
-    if (x1 <= paint.x || y1 <= paint.y || x0 >= paint.x + paint.width || y0 >= paint.y + paint.height) return out;
-    out.target_sets.assign(region.pixels(), 0u);
+    if (x1 <= paint.x || y1 <= paint.y || x0 >= paint.x + paint.width || y0 >= paint.y + paint.height) return {};
+    std::vector<uint32_t> sets(region.pixels(), 0u);
     bool any = false;
     for (int py = 0; py < paint.height; ++py) {
         const int64_t gy = paint.y + py;
@@ -117,12 +121,12 @@ LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, in
             if (t == TypePaint::kUnpainted || t >= kMaxPaintableTypes) continue;
             const int64_t lx = ((paint.x + px) >> level) - region.x;
             if (lx < 0 || lx >= region.width) continue;
-            out.target_sets[static_cast<size_t>(ly) * region.width + lx] |= 1u << t;
+            sets[static_cast<size_t>(ly) * region.width + lx] |= 1u << t;
             any = true;
         }
     }
-    if (!any) out.target_sets.clear();
-    return out;
+    if (!any) sets.clear();
+    return sets;
 }
 
 }  // namespace terrasynth::constraints

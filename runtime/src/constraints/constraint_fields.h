@@ -32,6 +32,10 @@ struct LevelConstraints {
 LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, int level, int first_level,
                                      bool hold_free_levels, const core::LevelRegion& region, double meters_per_pixel0);
 
+// The target sets R^i of `paint` on `region` of `level` (LevelConstraints::target_sets) on any level,
+// the free ones included; empty when nothing painted reaches the region.
+std::vector<uint32_t> paintedTargetSets(const TypePaint& paint, int level, const core::LevelRegion& region);
+
 // Half the width of a point's own 7x7 pixels (level-0 pixels from the site): held on the free levels
 // so the slope seen over them holds.
 constexpr double kSiteHalfWidthPx = 3.5;

@@ -211,7 +211,7 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
             // A preview level is not jittered: no correction follows to make the jitter coherent.
             const bool preview = level < output_level + params.preview_levels;
             s = steps.upsample(level, plan.regions[level + 1], plan.regions[level], preview ? 0.0f : params.jitter,
-                               params.seed);
+                               params.seed, params.constraints ? &params.constraints->types : nullptr);
             if (!s) return s;
             peak = std::max(peak, plan.regions[level].pixels() + plan.regions[level + 1].pixels());
         }
