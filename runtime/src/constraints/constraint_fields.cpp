@@ -42,11 +42,12 @@ void accumulatePoint(const PointConstraint& point, int level, const core::LevelR
             const double d = std::sqrt(ex * ex + ey * ey);
             if (d >= reach) continue;
             const double b = 1.0 / std::max(d, 0.5);
-            // The tilt lift holds the slope over the site's own pixels and fades out beyond them.
+            // The tilt lift holds the slope over the site's own pixels and fades out beyond them,
+            // where the wide tilt lift takes over.
             const double tilt = 1.0 - smoothstep((d - kSiteHalfWidthPx) / kSiteHalfWidthPx);
-            const double target = point.height_m + point.lift_m +
-                                  ((rise_east + tilt * point.tilt_east) * ex + (rise_south + tilt * point.tilt_south) * ey) *
-                                      meters_per_pixel0;
+            const double east = rise_east + tilt * point.tilt_east + (1.0 - tilt) * point.wide_tilt_east;
+            const double south = rise_south + tilt * point.tilt_south + (1.0 - tilt) * point.wide_tilt_south;
+            const double target = point.height_m + point.lift_m + (east * ex + south * ey) * meters_per_pixel0;
             float* sums = &blend[(static_cast<size_t>(gy - region.y) * region.width + (gx - region.x)) * 4];
             sums[0] += sign * static_cast<float>(b);
             sums[1] += sign * static_cast<float>(b * target);
