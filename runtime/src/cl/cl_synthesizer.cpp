@@ -243,7 +243,7 @@ private:
         coherence_ = std::move(codes.value());
         has_coherence_ = !coherence.empty();
         use_blend_ = constraints.blend.empty() ? 0 : 1;
-        use_types_ = constraints.target_sets.empty() ? 0 : 1;
+        use_types_ = constraints.target_sets.empty() ? 0 : constraints.types_keep_only ? 2 : 1;
         seed_salt_ = synth::seedingSalt(seed, level);
         auto blend = upload(constraints.blend.data(), constraints.blend.size() * sizeof(float));
         if (!blend) return blend.status();

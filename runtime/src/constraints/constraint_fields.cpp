@@ -93,7 +93,12 @@ LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, in
                                      bool hold_free_levels, const core::LevelRegion& region, double meters_per_pixel0) {
     LevelConstraints out;
     if (!constraints) return out;
-    if (level < first_level) return hold_free_levels ? heldOwnPixels(*constraints, level, region, meters_per_pixel0) : out;
+    if (level < first_level) {
+        if (hold_free_levels) out = heldOwnPixels(*constraints, level, region, meters_per_pixel0);
+        out.target_sets = paintedTargetSets(constraints->types, level, region);
+        out.types_keep_only = true;
+        return out;
+    }
     if (!constraints->points.empty() || !constraints->curves.empty()) {
         out.blend.assign(region.pixels() * 4, 0.0f);
         for (const PointConstraint& p : constraints->points) accumulatePoint(p, level, region, meters_per_pixel0, 1.0f, out.blend);
