@@ -36,8 +36,10 @@ struct SiteGroup {
 constexpr int kMaxGroupSide = 2048;
 
 // Half the side of the square a tilted site's wide plane is fitted over: half its radius (at least
-// its 7x7 pixels).
-int wideHalf(const PointConstraint& p) { return std::max(3, static_cast<int>(p.radius_px / 2.0f)); }
+// its 7x7 pixels, at most what one group's window holds).
+int wideHalf(const PointConstraint& p) {
+    return static_cast<int>(std::clamp(p.radius_px / 2.0f, 3.0f, static_cast<float>(kMaxGroupSide / 2 - 1)));
+}
 
 // What a site's slope is measured on: nothing, the plane over its 7x7 pixels, or that and the
 // plane over the square of wideHalf.
