@@ -221,7 +221,9 @@ TS_INLINE float layout_kappa(float kappa, global const uchar* atlas_exemplar, in
 // quantised appearance units weighted by scale^2 per mode: the metric distance of eq. 7 without
 // dequantising every tap.
 // Constraints (s5): `target_sets` (one uint per region pixel, 0 = any type) rejects candidates of
-// other types, with seeding from the per-type lists when all are rejected; `blend` holds, per region
+// other types, with seeding from the per-type lists when all are rejected (use_types 1), or on the
+// finest levels (use_types 2) keeps the type of a pixel whose source has one of them, unseeded
+// (constraints/constraint_fields.h); `blend` holds, per region
 // pixel, the point and curve constraints' inverse-distance sums (sum b, sum b*h_t, sum b*d), which
 // pull the chosen height towards the blended target with phi_d.
 kernel void correct(global float4* state, Region region, int first_x, int first_y, int inset,
@@ -254,7 +256,12 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         ns[k] = (float4)((g0.x + g1.x + g2.x) * third, (g0.y + g1.y + g2.y) * third, (g0.z + g1.z + g2.z) * third,
                          (g0.w + g1.w + g2.w) * third);
     }
-    const uint target = use_types ? target_sets[pixel] : 0u;
+    uint target = use_types ? target_sets[pixel] : 0u;
+    if (target != 0u && use_types == 2) {
+        const float4 own = state[pixel];
+        const uint type = atlas_type[floor_nonneg(own.y + 0.5f) * width + floor_nonneg(own.x + 0.5f)];
+        if (type >= 32u || ((target >> type) & 1u) == 0u) target = 0u;
+    }
     // The coarsest level holds the share layout (synth/initial_patches.h, kLayoutWeight): a
     // candidate from another exemplar than the pixel's share cell costs LAYOUT_WEIGHT times more.
     const int own_exemplar = use_layout ? (int)layout[pixel] : -1;
@@ -312,7 +319,7 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         }
     }
     const int gx = region.x + lx, gy = region.y + ly;
-    if (best_q < 0) {
+    if (best_q < 0 && use_types != 2) {
         // s5.2 seeding: nine random coordinates of each target type, from the preselected lists.
         for (int t = 0; t < 32; ++t) {
             if (((target >> t) & 1u) == 0u) continue;

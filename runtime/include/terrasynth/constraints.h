@@ -33,6 +33,12 @@ struct PointConstraint {
     // pixels holds too (set by liftPointConstraints when the free levels hold the site; not read
     // from projects). 0 = none.
     float tilt_east = 0.0f, tilt_south = 0.0f;
+    // Metres per metre added to the rise towards the east and the south over the rest of the radius
+    // (beyond the site's pixels, where tilt_east/south fade out), so the slope seen over half the
+    // radius holds too: around a small point asking a gentle slope against steep terrain, eq. 8-9
+    // pull each pixel only halfway from what its unconstrained neighbours ask (set by
+    // liftPointConstraints like the tilts; not read from projects). 0 = none.
+    float wide_tilt_east = 0.0f, wide_tilt_south = 0.0f;
 
     // Equal in everything the user sets (the lifts excluded).
     bool samePlacement(const PointConstraint& o) const {
@@ -40,9 +46,13 @@ struct PointConstraint {
                slope_angle_deg == o.slope_angle_deg && radius_px == o.radius_px;
     }
     bool sameLifts(const PointConstraint& o) const {
-        return lift_m == o.lift_m && tilt_east == o.tilt_east && tilt_south == o.tilt_south;
+        return lift_m == o.lift_m && tilt_east == o.tilt_east && tilt_south == o.tilt_south &&
+               wide_tilt_east == o.wide_tilt_east && wide_tilt_south == o.wide_tilt_south;
     }
-    void takeLifts(const PointConstraint& o) { lift_m = o.lift_m, tilt_east = o.tilt_east, tilt_south = o.tilt_south; }
+    void takeLifts(const PointConstraint& o) {
+        lift_m = o.lift_m, tilt_east = o.tilt_east, tilt_south = o.tilt_south;
+        wide_tilt_east = o.wide_tilt_east, wide_tilt_south = o.wide_tilt_south;
+    }
 };
 
 // A widget on a curve constraint (s3, s5.1): properties at arc-length parameter t of the course.

@@ -206,8 +206,10 @@ int coarsestSynthesizedLevel(const ExemplarDatabase& db, const SynthesisParams& 
 // the best round is kept.
 // With hold_on_free_levels the slope is held over the site's own 7x7 pixels too (points asked at
 // 5 degrees or more): the tilts (PointConstraint::tilt_east/south) are searched the same way until
-// the plane fitted over the finished 7x7 pixels rises within 10% of the asked rise (tested: from
-// 10 degrees up, direction within 15 degrees; docs/project-format.md has the measured figures).
+// the plane fitted over the finished 7x7 pixels rises within 10% of the asked rise, and the wide
+// tilts (wide_tilt_east/south) while the plane fitted over half the radius misses by more (tested:
+// 5-40 degrees, direction within 15 degrees over both; docs/project-format.md has the measured
+// figures). Such a point's site is then synthesized over half its radius each round.
 // Pass the same params (coherence, history) as the synthesis that will use the result; existing
 // lifts are the starting point, so re-lifting after a small edit usually takes one or two rounds.
 // Cost: per round, the sites are synthesized in windows grouped by a cost model (one window where

@@ -231,7 +231,7 @@ private:
     }
 
     Status upsample(int level, const synth::LevelRegion& parent, const synth::LevelRegion& child, float jitter,
-                    uint32_t seed) override {
+                    uint32_t seed, const TypePaint* paint) override {
         Status s = reserve(next_, next_capacity_, child.pixels());
         if (!s) return s;
         const DeviceLevel& p = levels_[level + 1];
@@ -246,8 +246,7 @@ private:
         if (!s) return s;
         // Exemplars too small for the coarser levels enter here (synth/initial_patches.h).
         if (!synth::entersAt(entry_levels_, level)) return Status::ok();
-        const synth::ShareLayout layout =
-            synth::shareLayout(*db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed);
+        const synth::ShareLayout layout = synth::entryLayout(*db_, entry_levels_, level, child, seed, paint);
         auto layout_buffer = upload(layout.exemplar.data(), layout.exemplar.size());
         if (!layout_buffer) return layout_buffer.status();
         return patchLevel(level, child, seed, layout_buffer.value().get(), layout.entering, true);
@@ -260,7 +259,7 @@ private:
         coherence_ = std::move(codes.value());
         has_coherence_ = !coherence.empty();
         use_blend_ = constraints.blend.empty() ? 0 : 1;
-        use_types_ = constraints.target_sets.empty() ? 0 : 1;
+        use_types_ = constraints.target_sets.empty() ? 0 : constraints.types_keep_only ? 2 : 1;
         seed_salt_ = synth::seedingSalt(seed, level);
         auto blend = upload(constraints.blend.data(), constraints.blend.size() * sizeof(float));
         if (!blend) return blend.status();

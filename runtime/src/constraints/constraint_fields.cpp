@@ -42,11 +42,12 @@ void accumulatePoint(const PointConstraint& point, int level, const core::LevelR
             const double d = std::sqrt(ex * ex + ey * ey);
             if (d >= reach) continue;
             const double b = 1.0 / std::max(d, 0.5);
-            // The tilt lift holds the slope over the site's own pixels and fades out beyond them.
+            // The tilt lift holds the slope over the site's own pixels and fades out beyond them,
+            // where the wide tilt lift takes over.
             const double tilt = 1.0 - smoothstep((d - kSiteHalfWidthPx) / kSiteHalfWidthPx);
-            const double target = point.height_m + point.lift_m +
-                                  ((rise_east + tilt * point.tilt_east) * ex + (rise_south + tilt * point.tilt_south) * ey) *
-                                      meters_per_pixel0;
+            const double east = rise_east + tilt * point.tilt_east + (1.0 - tilt) * point.wide_tilt_east;
+            const double south = rise_south + tilt * point.tilt_south + (1.0 - tilt) * point.wide_tilt_south;
+            const double target = point.height_m + point.lift_m + (east * ex + south * ey) * meters_per_pixel0;
             float* sums = &blend[(static_cast<size_t>(gy - region.y) * region.width + (gx - region.x)) * 4];
             sums[0] += sign * static_cast<float>(b);
             sums[1] += sign * static_cast<float>(b * target);
@@ -92,21 +93,30 @@ LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, in
                                      bool hold_free_levels, const core::LevelRegion& region, double meters_per_pixel0) {
     LevelConstraints out;
     if (!constraints) return out;
-    if (level < first_level) return hold_free_levels ? heldOwnPixels(*constraints, level, region, meters_per_pixel0) : out;
+    if (level < first_level) {
+        if (hold_free_levels) out = heldOwnPixels(*constraints, level, region, meters_per_pixel0);
+        out.target_sets = paintedTargetSets(constraints->types, level, region);
+        out.types_keep_only = true;
+        return out;
+    }
     if (!constraints->points.empty() || !constraints->curves.empty()) {
         out.blend.assign(region.pixels() * 4, 0.0f);
         for (const PointConstraint& p : constraints->points) accumulatePoint(p, level, region, meters_per_pixel0, 1.0f, out.blend);
         if (!constraints->curves.empty()) addCurveSums(constraints->curves, level, region, meters_per_pixel0, false, out.blend);
         if (!anyBlend(out.blend)) out.blend.clear();
     }
-    const TypePaint& paint = constraints->types;
-    if (paint.empty()) return out;
+    out.target_sets = paintedTargetSets(constraints->types, level, region);
+    return out;
+}
+
+std::vector<uint32_t> paintedTargetSets(const TypePaint& paint, int level, const core::LevelRegion& region) {
+    if (paint.empty()) return {};
     const int64_t cell = int64_t(1) << level;
     // Level-0 bounds of the region; skip the work when the painting is elsewhere.
     const int64_t x0 = region.x * cell, y0 = region.y * cell;
     const int64_t x1 = (int64_t(region.x) + region.width) * cell, y1 = (int64_t(region.y) + region.height) * cell;
-    if (x1 <= paint.x || y1 <= paint.y || x0 >= paint.x + paint.width || y0 >= paint.y + paint.height) return out;
-    out.target_sets.assign(region.pixels(), 0u);
+    if (x1 <= paint.x || y1 <= paint.y || x0 >= paint.x + paint.width || y0 >= paint.y + paint.height) return {};
+    std::vector<uint32_t> sets(region.pixels(), 0u);
     bool any = false;
     for (int py = 0; py < paint.height; ++py) {
         const int64_t gy = paint.y + py;
@@ -117,12 +127,12 @@ LevelConstraints constraintsForLevel(const SynthesisConstraints* constraints, in
             if (t == TypePaint::kUnpainted || t >= kMaxPaintableTypes) continue;
             const int64_t lx = ((paint.x + px) >> level) - region.x;
             if (lx < 0 || lx >= region.width) continue;
-            out.target_sets[static_cast<size_t>(ly) * region.width + lx] |= 1u << t;
+            sets[static_cast<size_t>(ly) * region.width + lx] |= 1u << t;
             any = true;
         }
     }
-    if (!any) out.target_sets.clear();
-    return out;
+    if (!any) sets.clear();
+    return sets;
 }
 
 }  // namespace terrasynth::constraints

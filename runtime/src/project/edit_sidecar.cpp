@@ -31,6 +31,7 @@ ConstraintLifts liftsOf(const SynthesisConstraints* constraints) {
     for (const PointConstraint& p : constraints->points) {
         lifts.points.push_back(p.lift_m);
         lifts.tilts.push_back({p.tilt_east, p.tilt_south});
+        lifts.wide_tilts.push_back({p.wide_tilt_east, p.wide_tilt_south});
     }
     for (const CurveConstraint& c : constraints->curves) lifts.curves.push_back(c.lift_m);
     return lifts;
@@ -38,12 +39,15 @@ ConstraintLifts liftsOf(const SynthesisConstraints* constraints) {
 
 bool applyLifts(const ConstraintLifts& lifts, std::vector<PointConstraint>& points, std::vector<CurveConstraint>& curves) {
     if (lifts.points.size() != points.size() || (!lifts.tilts.empty() && lifts.tilts.size() != points.size()) ||
+        (!lifts.wide_tilts.empty() && lifts.wide_tilts.size() != points.size()) ||
         (!lifts.curves.empty() && lifts.curves.size() != curves.size()))
         return false;
     for (size_t i = 0; i < points.size(); ++i) {
         points[i].lift_m = lifts.points[i];
         points[i].tilt_east = lifts.tilts.empty() ? 0.0f : lifts.tilts[i][0];
         points[i].tilt_south = lifts.tilts.empty() ? 0.0f : lifts.tilts[i][1];
+        points[i].wide_tilt_east = lifts.wide_tilts.empty() ? 0.0f : lifts.wide_tilts[i][0];
+        points[i].wide_tilt_south = lifts.wide_tilts.empty() ? 0.0f : lifts.wide_tilts[i][1];
     }
     for (size_t i = 0; i < curves.size(); ++i) curves[i].lift_m = lifts.curves.empty() ? std::vector<float>() : lifts.curves[i];
     return true;
@@ -73,12 +77,14 @@ std::string encodeEditSidecar(const EditSidecar& s) {
                          {"extent", {s.extent.x, s.extent.y, s.extent.width, s.extent.height}},
                          {"lifts", s.lifts.points},
                          {"tilts", s.lifts.tilts},
+                         {"wide_tilts", s.lifts.wide_tilts},
                          {"curve_lifts", s.lifts.curves},
                          {"history", history},
                          {"reference", {{"constraints", json::parse(s.reference.json)},
                                         {"masks", reference_masks},
                                         {"lifts", s.reference_lifts.points},
                                         {"tilts", s.reference_lifts.tilts},
+                                        {"wide_tilts", s.reference_lifts.wide_tilts},
                                         {"curve_lifts", s.reference_lifts.curves}}},
                          {"blobs", blobs}};
     const std::string text = header.dump();

@@ -25,6 +25,7 @@ namespace terrasynth::project {
 struct ConstraintLifts {
     std::vector<float> points;                // lift_m of each point, in order
     std::vector<std::array<float, 2>> tilts;  // tilt_east, tilt_south of each point (empty: none)
+    std::vector<std::array<float, 2>> wide_tilts;  // wide_tilt_east, wide_tilt_south likewise
     std::vector<std::vector<float>> curves;   // lift profile of each curve (empty: none)
 };
 ConstraintLifts liftsOf(const SynthesisConstraints* constraints);

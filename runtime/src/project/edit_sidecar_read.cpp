@@ -67,8 +67,8 @@ std::vector<float> boundedNumbers(const json& v, size_t max_n, double bound, std
     return out;
 }
 
-// Point lifts, tilts and curve lift profiles of one constraint set. Tilts and curve lifts came
-// later: a sidecar without them has none.
+// Point lifts, tilts and curve lift profiles of one constraint set. Tilts, wide tilts and curve
+// lifts came later: a sidecar without them has none.
 ConstraintLifts readLifts(JsonReader& r) {
     ConstraintLifts lifts;
     const auto max_points = static_cast<size_t>(limits::kMaxPointConstraints);
@@ -77,15 +77,19 @@ ConstraintLifts readLifts(JsonReader& r) {
         lifts.points = boundedNumbers(*v, max_points, limits::kMaxAbsHeightM, &problem);
         if (!problem.empty()) return r.fail("lifts", problem), lifts;
     }
-    if (const json* v = r.child("tilts")) {
+    // Tilts of the site and, beyond it, of half the radius (wide tilts, which came later still).
+    for (const char* key : {"tilts", "wide_tilts"}) {
+        const json* v = r.child(key);
+        if (!v) continue;
+        std::vector<std::array<float, 2>>& into = std::string(key) == "tilts" ? lifts.tilts : lifts.wide_tilts;
         if (!v->is_array() || v->size() > max_points)
-            return r.fail("tilts", "must be an array of at most " + std::to_string(max_points) + " pairs"), lifts;
+            return r.fail(key, "must be an array of at most " + std::to_string(max_points) + " pairs"), lifts;
         for (size_t i = 0; i < v->size(); ++i) {
             const std::vector<float> pair = boundedNumbers((*v)[i], 2, kMaxTilt, &problem);
             if (!problem.empty() || pair.size() != 2)
-                return r.fail("tilts[" + std::to_string(i) + "]", "must be [east, south], each within +-" +
-                                                                      detail::compactNumber(kMaxTilt)), lifts;
-            lifts.tilts.push_back({pair[0], pair[1]});
+                return r.fail(std::string(key) + "[" + std::to_string(i) + "]",
+                              "must be [east, south], each within +-" + detail::compactNumber(kMaxTilt)), lifts;
+            into.push_back({pair[0], pair[1]});
         }
     }
     if (const json* v = r.child("curve_lifts")) {

@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "constraints/constraint_fields.h"
 #include "core/hash.h"
 #include "synth/synthesis_plan.h"
 #include "terrasynth/status.h"
@@ -176,6 +177,22 @@ ShareLayout shareLayout(const ExemplarDatabase& db, const std::vector<int>& entr
             const size_t block = static_cast<size_t>(by - first_by) * blocks_w + (bx - first_bx);
             layout.exemplar[static_cast<size_t>(ly) * width + lx] = cells[block * kShareCellsPerBlock + fy * kShareCellsPerSide + fx];
         }
+    return layout;
+}
+
+ShareLayout entryLayout(const ExemplarDatabase& db, const std::vector<int>& entry_levels, int level,
+                        const core::LevelRegion& child, uint32_t seed, const TypePaint* paint) {
+    ShareLayout layout = shareLayout(db, entry_levels, level, child.x, child.y, child.width, child.height, seed);
+    const std::vector<uint32_t> targets = paint ? constraints::paintedTargetSets(*paint, level, child) : std::vector<uint32_t>();
+    if (targets.empty()) return layout;
+    // Some exemplar entered at a coarser level (the coarsest holds one): admit_only skips its pixels.
+    const auto staying = std::find(layout.entering.begin(), layout.entering.end(), uint8_t{0});
+    TERRASYNTH_REQUIRE(staying != layout.entering.end(), "entryLayout: every exemplar enters at this level");
+    const auto stay = static_cast<uint8_t>(staying - layout.entering.begin());
+    for (size_t i = 0; i < targets.size(); ++i) {
+        const uint8_t e = layout.exemplar[i];
+        if (targets[i] != 0u && layout.entering[e] && ((targets[i] >> db.exemplar_type[e]) & 1u) == 0u) layout.exemplar[i] = stay;
+    }
     return layout;
 }
 

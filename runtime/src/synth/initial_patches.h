@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/level_region.h"
 #include "terrasynth/database.h"
 #include "terrasynth/status.h"
 #include "terrasynth/synthesizer.h"
@@ -108,6 +109,17 @@ struct ShareLayout {
 };
 ShareLayout shareLayout(const ExemplarDatabase& db, const std::vector<int>& entry_levels, int level, int x, int y,
                         int width, int height, uint32_t seed);
+
+// The share layout of `child` at `level`, where exemplars enter, for its upsampling (admit_only):
+// shareLayout, except that a painted pixel whose target set (s5.2, R^i of the `paint`) excludes the
+// type of its share cell's entering exemplar does not admit it (it shows a non-entering exemplar)
+// and keeps the coordinate the coarser levels chose. Why: the coarser levels' type rejection put a
+// painted type there, and an entry at one of the finest two levels, where the paper disables type
+// constraints (s5.2, last paragraph), has no pass to reject it again: a 10-30 m exemplar's cells
+// inside a region painted over the middle quarter of a 1024^2 17-exemplar synthesis left 89-94% of
+// it of the painted type. `paint` null or empty: shareLayout.
+ShareLayout entryLayout(const ExemplarDatabase& db, const std::vector<int>& entry_levels, int level,
+                        const core::LevelRegion& child, uint32_t seed, const TypePaint* paint);
 
 // At the coarsest level a candidate from another exemplar than the pixel's share cell costs this
 // many times its eq. 7 cost (the factor s4 gives C_2). Why: the exemplars start from their exact

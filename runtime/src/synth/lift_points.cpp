@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "synth/lift_search.h"
 #include "synth/synthesis_driver.h"
@@ -34,11 +35,22 @@ struct SiteGroup {
 // Windows larger than this are split whatever they would save: their state would take gigabytes.
 constexpr int kMaxGroupSide = 2048;
 
-// The pixels a site is measured on: the 2x2 whose centres (whole coordinates) surround it, or with
-// `plane` the 7x7 around its nearest pixel (which hold those 2x2).
-PixelWindow siteWindow(const PointConstraint& p, bool plane) {
-    if (plane) return {std::llround(p.x) - 3, std::llround(p.y) - 3, 7, 7};
-    return {static_cast<int64_t>(std::floor(p.x)), static_cast<int64_t>(std::floor(p.y)), 2, 2};
+// Half the side of the square a tilted site's wide plane is fitted over: half its radius (at least
+// its 7x7 pixels, at most what one group's window holds).
+int wideHalf(const PointConstraint& p) {
+    return static_cast<int>(std::clamp(p.radius_px / 2.0f, 3.0f, static_cast<float>(kMaxGroupSide / 2 - 1)));
+}
+
+// What a site's slope is measured on: nothing, the plane over its 7x7 pixels, or that and the
+// plane over the square of wideHalf.
+enum class SitePlane : uint8_t { None, Own, Wide };
+
+// The pixels a site is measured on: the 2x2 whose centres (whole coordinates) surround it, or the
+// 7x7 or wideHalf square around its nearest pixel (which hold those 2x2).
+PixelWindow siteWindow(const PointConstraint& p, SitePlane plane) {
+    if (plane == SitePlane::None) return {static_cast<int64_t>(std::floor(p.x)), static_cast<int64_t>(std::floor(p.y)), 2, 2};
+    const int half = plane == SitePlane::Wide ? wideHalf(p) : 3;
+    return {std::llround(p.x) - half, std::llround(p.y) - half, 2 * half + 1, 2 * half + 1};
 }
 
 // What synthesizing `w` costs: the pixels of its plan on every level, margins included.
@@ -85,14 +97,29 @@ std::vector<SiteGroup> groupSites(const std::vector<PointConstraint>& points, co
 struct FinishedSite {
     float height = 0.0f;                        // bilinear at the site
     float rise_east = 0.0f, rise_south = 0.0f;  // plane fitted over the 7x7 pixels, metres per metre
+    float wide_east = 0.0f, wide_south = 0.0f;  // and over the square of wideHalf
 };
+
+// Least-squares rise (metres per metre east and south) of the plane over +-half pixels around
+// (cx, cy) of `h`.
+std::pair<float, float> fittedRise(const Heightfield& h, int cx, int cy, int half) {
+    double east = 0.0, south = 0.0;
+    for (int dy = -half; dy <= half; ++dy)
+        for (int dx = -half; dx <= half; ++dx) {
+            east += dx * static_cast<double>(h.at(cx + dx, cy + dy));
+            south += dy * static_cast<double>(h.at(cx + dx, cy + dy));
+        }
+    // The sum of dx^2 over the square: its side times sum_{-half..half} k^2.
+    const double norm = (2.0 * half + 1.0) * half * (half + 1.0) * (2.0 * half + 1.0) / 3.0;
+    return {static_cast<float>(east / (norm * h.meters_per_pixel_x)), static_cast<float>(south / (norm * h.meters_per_pixel_y))};
+}
 
 // The finished sites of `group` (level 0, one synthesis of its window: bit for bit what a window per
 // site gives, windowed determinism): each site's height bilinear over the 2x2 pixels around it,
-// whose centres are at whole coordinates, and for the sites in `plane` the plane fitted over their
-// 7x7 pixels.
+// whose centres are at whole coordinates, and the planes of `plane` fitted over their 7x7 pixels
+// and over half their radius.
 Status measureSites(Synthesizer& synthesizer, const SynthesisParams& params, const std::vector<PointConstraint>& points,
-                    const std::vector<uint8_t>& plane, const SiteGroup& group, std::vector<FinishedSite>& sites) {
+                    const std::vector<SitePlane>& plane, const SiteGroup& group, std::vector<FinishedSite>& sites) {
     auto out = synthesizer.synthesize(group.window, params, 0, false);
     if (!out) return out.status().withContext("point constraint " + std::to_string(group.points.front()));
     const Heightfield& h = out->heights;
@@ -106,17 +133,10 @@ Status measureSites(Synthesizer& synthesizer, const SynthesisParams& params, con
         const float top = h.at(x, y) + (h.at(x + 1, y) - h.at(x, y)) * tx;
         const float bottom = h.at(x, y + 1) + (h.at(x + 1, y + 1) - h.at(x, y + 1)) * tx;
         site.height = top + (bottom - top) * ty;
-        if (!plane[i]) continue;
-        // Least squares over offsets -3..3: sum of dx^2 over the window is 7 * 28.
+        if (plane[i] == SitePlane::None) continue;
         const int cx = static_cast<int>(std::llround(p.x) - group.window.x), cy = static_cast<int>(std::llround(p.y) - group.window.y);
-        double east = 0.0, south = 0.0;
-        for (int dy = -3; dy <= 3; ++dy)
-            for (int dx = -3; dx <= 3; ++dx) {
-                east += dx * static_cast<double>(h.at(cx + dx, cy + dy));
-                south += dy * static_cast<double>(h.at(cx + dx, cy + dy));
-            }
-        site.rise_east = static_cast<float>(east / (196.0 * h.meters_per_pixel_x));
-        site.rise_south = static_cast<float>(south / (196.0 * h.meters_per_pixel_y));
+        std::tie(site.rise_east, site.rise_south) = fittedRise(h, cx, cy, 3);
+        if (plane[i] == SitePlane::Wide) std::tie(site.wide_east, site.wide_south) = fittedRise(h, cx, cy, wideHalf(p));
     }
     return Status::ok();
 }
@@ -129,8 +149,8 @@ std::pair<float, float> askedRise(const PointConstraint& p) {
 }
 
 struct PointSearch {
-    synth::LiftSearch height, east, south;
-    float lift = 0.0f, tilt_east = 0.0f, tilt_south = 0.0f;  // best round
+    synth::LiftSearch height, east, south, wide_east, wide_south;
+    PointConstraint best;  // its lifts in the best round
 };
 
 }  // namespace
@@ -156,25 +176,30 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftPointConstraints(Synthes
     if (Status s = synth::validateRequest(synthesizer.database(), PixelWindow{0, 0, 1, 1}, probe, 0); !s) return s;
     const double mpp = synthesizer.database().meters_per_pixel;
     std::vector<PointSearch> searches(points.size());
-    std::vector<uint8_t> tilted(points.size(), 0);
+    std::vector<uint8_t> tilted(points.size(), 0), wide_held(points.size(), 1);
+    std::vector<SitePlane> planes(points.size(), SitePlane::None);
     std::vector<PixelWindow> site_windows(points.size());
     for (size_t i : moving) {
         // Slopes are held over the site's own pixels only where the free levels hold the site.
         tilted[i] = params.hold_on_free_levels && points[i].slope_angle_deg >= kMinTiltedSlopeDeg;
-        if (!tilted[i]) points[i].tilt_east = points[i].tilt_south = 0.0f;
-        site_windows[i] = siteWindow(points[i], tilted[i] != 0);
+        if (!tilted[i]) points[i].tilt_east = points[i].tilt_south = points[i].wide_tilt_east = points[i].wide_tilt_south = 0.0f;
+        // The first round measures every tilted site's wide plane; later rounds only those that
+        // miss or have a wide tilt (most hold untilted, and their window is the radius's size).
+        planes[i] = tilted[i] ? SitePlane::Wide : SitePlane::None;
     }
     std::vector<SiteGroup> groups;
-    if (!moving.empty()) {
+    auto regroup = [&] {
+        for (size_t i : moving) site_windows[i] = siteWindow(points[i], planes[i]);
         uint64_t cost = 0;
         groups = groupSites(points, site_windows, moving, synth::coarsestLevel(synthesizer.database(), probe),
                             probe.correction_passes, &cost);
-    }
+    };
+    if (!moving.empty()) regroup();
     std::vector<FinishedSite> finished(points.size());
     float best_worst = std::numeric_limits<float>::infinity();
     for (int round = 0; round < options.max_rounds && !moving.empty(); ++round) {
         for (const SiteGroup& group : groups)
-            if (Status s = measureSites(synthesizer, probe, points, tilted, group, finished); !s) return s;
+            if (Status s = measureSites(synthesizer, probe, points, planes, group, finished); !s) return s;
         // Worst miss in metres: the height at the site, or the plane's error at the 7x7's edge.
         float worst = 0.0f;
         bool held = true;
@@ -193,21 +218,38 @@ Result<std::shared_ptr<const SynthesisConstraints>> liftPointConstraints(Synthes
             const float miss = std::hypot(miss_east, miss_south);
             worst = std::max(worst, static_cast<float>(miss * 3.0 * mpp));
             held = held && miss <= kTiltTolerance * std::hypot(east, south);
+            if (planes[i] != SitePlane::Wide) continue;
+            // The wide plane, with the same tolerance, and weighed like the 7x7 one (its error 3 px
+            // out): its own edge would outweigh every height.
+            const float wide_east = site.wide_east - east, wide_south = site.wide_south - south;
+            searches[i].wide_east.record(p.wide_tilt_east, wide_east, round);
+            searches[i].wide_south.record(p.wide_tilt_south, wide_south, round);
+            const float wide = std::hypot(wide_east, wide_south);
+            worst = std::max(worst, static_cast<float>(wide * 3.0 * mpp));
+            wide_held[i] = wide <= kTiltTolerance * std::hypot(east, south);
+            held = held && wide_held[i];
         }
         // The lifts of a whole round were synthesized together, so the best round is what is kept.
         if (worst < best_worst) {
             best_worst = worst;
-            for (size_t i : moving) searches[i].lift = points[i].lift_m, searches[i].tilt_east = points[i].tilt_east,
-                                    searches[i].tilt_south = points[i].tilt_south;
+            for (size_t i : moving) searches[i].best.takeLifts(points[i]);
         }
         if (held) break;
         for (size_t i : moving) {
             points[i].lift_m = searches[i].height.next();
-            if (tilted[i]) points[i].tilt_east = searches[i].east.next(), points[i].tilt_south = searches[i].south.next();
+            if (!tilted[i]) continue;
+            points[i].tilt_east = searches[i].east.next(), points[i].tilt_south = searches[i].south.next();
+            // Most wide planes hold untilted: they move only while they miss.
+            if (!wide_held[i]) points[i].wide_tilt_east = searches[i].wide_east.next(), points[i].wide_tilt_south = searches[i].wide_south.next();
         }
+        if (round > 0) continue;
+        bool narrowed = false;
+        for (size_t i : moving)
+            if (planes[i] == SitePlane::Wide && wide_held[i] && points[i].wide_tilt_east == 0.0f && points[i].wide_tilt_south == 0.0f)
+                planes[i] = SitePlane::Own, narrowed = true;
+        if (narrowed) regroup();
     }
-    for (size_t i : moving)
-        points[i].lift_m = searches[i].lift, points[i].tilt_east = searches[i].tilt_east, points[i].tilt_south = searches[i].tilt_south;
+    for (size_t i : moving) points[i].takeLifts(searches[i].best);
     return std::shared_ptr<const SynthesisConstraints>(std::move(lifted));
 }
 

@@ -255,7 +255,14 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                          (g0.w + g1.w + g2.w) * third};
             }
             const size_t pixel = static_cast<size_t>(ly) * region.width + lx;
-            const uint32_t target = constraints.target_sets.empty() ? 0u : constraints.target_sets[pixel];
+            uint32_t target = constraints.target_sets.empty() ? 0u : constraints.target_sets[pixel];
+            if (target != 0u && constraints.types_keep_only) {
+                // The finest levels keep painted types only where the pixel has one (constraint_fields.h).
+                const PixelState& s = state[pixel];
+                const size_t own = static_cast<size_t>(std::floor(s.y + 0.5f)) * db.width + static_cast<size_t>(std::floor(s.x + 0.5f));
+                const uint32_t type = db.type[own];
+                if (type >= 32u || ((target >> type) & 1u) == 0u) target = 0u;
+            }
             // The coarsest level holds the share layout (kernel correct, layout_kappa).
             auto layoutKappa = [&](float kappa, int q) {
                 return !context.layout.empty() && db.exemplar[q] != context.layout[pixel] ? kappa * kLayoutWeight : kappa;
@@ -308,7 +315,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 }
             }
             const int gx = region.x + lx, gy = region.y + ly;
-            if (best_q < 0) {
+            if (best_q < 0 && !constraints.types_keep_only) {
                 // s5.2 seeding: nine random coordinates of each target type.
                 for (int t = 0; t < kMaxPaintableTypes; ++t) {
                     if (((target >> t) & 1u) == 0u) continue;

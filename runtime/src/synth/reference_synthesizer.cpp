@@ -24,14 +24,14 @@ public:
         referencePatches(db_.levels[level], layout, region, seed, level, false, current_);
         return Status::ok();
     }
-    Status upsample(int level, const LevelRegion& parent, const LevelRegion& child, float jitter, uint32_t seed) override {
+    Status upsample(int level, const LevelRegion& parent, const LevelRegion& child, float jitter, uint32_t seed,
+                    const TypePaint* paint) override {
         std::vector<PixelState> next;
         referenceUpsample(db_.levels[level + 1], db_.levels[level], parent, current_, child, jitter, seed, level, next);
         current_.swap(next);
         if (entersAt(entry_levels_, level))
-            referencePatches(db_.levels[level],
-                             shareLayout(db_, entry_levels_, level, child.x, child.y, child.width, child.height, seed),
-                             child, seed, level, true, current_);
+            referencePatches(db_.levels[level], entryLayout(db_, entry_levels_, level, child, seed, paint), child, seed,
+                             level, true, current_);
         return Status::ok();
     }
     Status beginLevel(int level, const LevelRegion&, const constraints::LevelConstraints& constraints,

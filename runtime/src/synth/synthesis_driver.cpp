@@ -51,7 +51,8 @@ Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, co
         for (size_t i = 0; i < c.points.size(); ++i) {
             const PointConstraint& p = c.points[i];
             if (!(p.radius_px > 0.0f && p.radius_px <= 1e6f) || !std::isfinite(p.height_m) || !std::isfinite(p.lift_m) ||
-                !std::isfinite(p.tilt_east) || !std::isfinite(p.tilt_south) ||
+                !std::isfinite(p.tilt_east) || !std::isfinite(p.tilt_south) || !std::isfinite(p.wide_tilt_east) ||
+                !std::isfinite(p.wide_tilt_south) ||
                 !(p.slope_angle_deg >= 0.0f && p.slope_angle_deg <= 80.0f) || !std::isfinite(p.slope_direction_deg) ||
                 !(std::fabs(p.x) <= bound && std::fabs(p.y) <= bound))
                 return Status::error("point constraint " + std::to_string(i) +
@@ -211,7 +212,7 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
             // A preview level is not jittered: no correction follows to make the jitter coherent.
             const bool preview = level < output_level + params.preview_levels;
             s = steps.upsample(level, plan.regions[level + 1], plan.regions[level], preview ? 0.0f : params.jitter,
-                               params.seed);
+                               params.seed, params.constraints ? &params.constraints->types : nullptr);
             if (!s) return s;
             peak = std::max(peak, plan.regions[level].pixels() + plan.regions[level + 1].pixels());
         }

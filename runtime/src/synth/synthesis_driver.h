@@ -28,9 +28,10 @@ class SynthesisSteps {
 public:
     virtual ~SynthesisSteps() = default;
     virtual Status init(int level, const LevelRegion& region, uint32_t seed) = 0;
-    // Upsample + jitter from level+1 (the previous step's state) into `child` at `level`.
+    // Upsample + jitter from level+1 (the previous step's state) into `child` at `level`, where
+    // exemplars may enter (entryLayout with `paint`, null when nothing is painted).
     virtual Status upsample(int level, const LevelRegion& parent, const LevelRegion& child, float jitter,
-                            uint32_t seed) = 0;
+                            uint32_t seed, const TypePaint* paint) = 0;
     // Called once per level before its correction subpasses. `coherence` holds the W^i codes per
     // region pixel, empty when there is no previous synthesis to be coherent with.
     virtual Status beginLevel(int level, const LevelRegion& region, const constraints::LevelConstraints& constraints,
