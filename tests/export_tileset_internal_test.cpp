@@ -2,6 +2,8 @@
 // shard assignment, bytes independent of shards and threads, re-runs, errors and boxes of the
 // merged tileset, implicit availability.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +18,7 @@
 
 #include "export/tileset_implicit.h"
 #include "export/tileset_plan.h"
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/tileset_bake.h"
 #include "test_support.h"
 
@@ -24,6 +27,16 @@ using namespace terrasynth::bake_detail;
 namespace fs = std::filesystem;
 
 namespace {
+
+// This machine's name as FileTransaction puts it into temporary names ('.' and '/' as '_').
+std::string hostTag() {
+    char name[256] = {};
+    ::gethostname(name, sizeof name - 1);
+    std::string t = name;
+    for (char& c : t)
+        if (c == '.' || c == '/') c = '_';
+    return t;
+}
 
 // Level k of a real DEM: the mean of each 2^k x 2^k block of level-0 samples, the DEM mirrored
 // beyond its edges (so the world is unbounded and windows agree bit for bit).
@@ -227,16 +240,26 @@ TEST(TilesetBake, RerunBakesOnlyMissingTilesAndClearsItsOwnTemporaries) {
     const TileKey theirs = unitTiles(tree, units[end]).back();
     const std::string mine_glb = dir + "/" + tree.tilePath(mine, ".glb");
     ASSERT_TRUE(fs::remove(mine_glb));
-    std::ofstream(mine_glb + ".tmp.999999") << "half a tile";
-    fs::create_directories(fs::path(dir + "/" + tree.tilePath(theirs, ".glb")).parent_path());
-    std::ofstream(dir + "/" + tree.tilePath(theirs, ".glb") + ".tmp.999999") << "another shard, still writing";
+    // Temporaries are named "<file>.tmp.<host>.<pid>.<n>" (FileTransaction): a writer that died
+    // (a child reaped at once) left half a tile, a live one (this process) is still writing.
+    const pid_t dead = ::fork();
+    if (dead == 0) ::_exit(0);
+    ASSERT_GT(dead, 0);
+    ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
+    const std::string mine_tmp = mine_glb + ".tmp." + hostTag() + "." + std::to_string(dead) + ".0";
+    const std::string theirs_tmp =
+        dir + "/" + tree.tilePath(theirs, ".glb") + ".tmp." + hostTag() + "." + std::to_string(::getpid()) + ".0";
+    ASSERT_TRUE(FileTransaction::isStaleTemporary(fs::path(mine_tmp).filename().string()));
+    std::ofstream(mine_tmp) << "half a tile";
+    fs::create_directories(fs::path(theirs_tmp).parent_path());
+    std::ofstream(theirs_tmp) << "another shard, still writing";
     auto second = bakeTiles(dir, demSource(), o);
     ASSERT_TRUE(second) << second.message();
     EXPECT_EQ(second->tiles_baked, 1);
     EXPECT_EQ(second->tiles_skipped, first->tiles_baked - 1);
     EXPECT_TRUE(fs::exists(mine_glb));
-    EXPECT_FALSE(fs::exists(mine_glb + ".tmp.999999"));
-    EXPECT_TRUE(fs::exists(dir + "/" + tree.tilePath(theirs, ".glb") + ".tmp.999999"));
+    EXPECT_FALSE(fs::exists(mine_tmp));
+    EXPECT_TRUE(fs::exists(theirs_tmp));
     // The other shard's tiles are missing, and the merge names them.
     auto missing = findMissingTiles(dir);
     ASSERT_TRUE(missing);

@@ -186,7 +186,7 @@ TEST_F(CliHardening, AbsurdSizesAreRefusedBeforeAllocating) {
     expectRefused("db build " + test::dataDir() + "/exemplars -o " + path("fine.tsdb") + " --meters-per-pixel 0.001 -q",
                   {"terrasynth db build: ", "orom_", "coarser --meters-per-pixel"});
     const std::string layers = "layers " + writeProject("fbm.tsyn", {{"layers", {{{"type", "base"}, {"source", "fbm"}}}}});
-    expectRefused(layers + " --size=-64,64 --mpp 30 -o " + path("out.png"), {"terrasynth layers: --size: W,H must be 1..16384"},
+    expectRefused(layers + " --size=-64,64 --mpp 30 -o " + path("out.png"), {"terrasynth layers: --size: expected a finite number in [1, 16384], got '-64'"},
                   planted);
     expectRefused(layers + " --size 100000,100000 --mpp 30 -o " + path("out.png"), {"--size"}, planted);
     expectRefused("synth " + writeProject("curve.tsyn", {{"constraints", {{"curves", {{{"course", {{0, 0}, {1e9, 1}}},
@@ -259,8 +259,8 @@ TEST_F(CliHardening, RefusedInputsNameTheFileAndTheField) {
         {"synth " + path("proj.tsyn") + " --size ax3" + out, {"--size must be WxH"}},
         {"synth " + path("proj.tsyn") + " --origin '1;2'" + out, {"--origin must be X,Y"}},
         {"synth " + path("proj.tsyn") + " --backend cuda" + out, {"--backend must be opencl or reference"}},
-        {"synth " + path("proj.tsyn") + " --level 13" + out, {"terrasynth synth: --level: Value 13 not in range 0 to 12"}},
-        {"synth " + path("proj.tsyn") + " --seed x" + out, {"terrasynth synth: Could not convert: --seed = x"}},
+        {"synth " + path("proj.tsyn") + " --level 13" + out, {"terrasynth synth: --level: expected a finite number in [0, 12], got '13'"}},
+        {"synth " + path("proj.tsyn") + " --seed x" + out, {"terrasynth synth: --seed: expected a finite number in [0, 4294967295], got 'x'"}},
         {"synth " + path("proj.tsyn") + " -o " + path("out.bmp"), {"out.bmp: unknown heightmap extension \".bmp\""}},
         {"synth " + path("proj.tsyn") + out + " --preview " + path("hs.jpg"), {"--preview: ", "hs.jpg: must end in .png"}},
         {"synth " + path("proj.tsyn") + out + " --unknown-flag", {"terrasynth synth: The following argument"}},
@@ -283,14 +283,14 @@ TEST_F(CliHardening, RefusedInputsNameTheFileAndTheField) {
         {"synth " + project("layer.tsyn", {{"layers", {{{"type", "volcano"}}}}}) + out, {"layer.tsyn", "unknown layer type \"volcano\""}},
         {"synth " + project("nodb.tsyn", {{"database", path("missing.tsdb")}}) + out, {"missing.tsdb: cannot open"}},
         {"db build " + path("nothing") + " -o " + path("x.tsdb"), {"terrasynth db build: ", "nothing"}},
-        {"db build " + dir_ + " -o " + path("x.tsdb") + " --levels 0", {"--levels: Value 0 not in range 1 to 12"}},
+        {"db build " + dir_ + " -o " + path("x.tsdb") + " --levels 0", {"--levels: expected a finite number in [1, 12], got '0'"}},
         {"db build " + path("proj.tsyn") + " -o " + path("x.tsdb"), {"proj.tsyn: unsupported exemplar format \".tsyn\""}},
         {"layers " + path("nope.tsyn"), {"terrasynth layers: ", "nope.tsyn: cannot open"}},
-        {"layers " + path("proj.tsyn") + " --mpp -1 --size 4,4" + out, {"--mpp: must be in (0, 100000]"}},
+        {"layers " + path("proj.tsyn") + " --mpp -1 --size 4,4" + out, {"--mpp: expected a finite number in [0.000001, 100000], got '-1'"}},
         {"export " + path("proj.tsyn") + " --heightmap " + path("in.png") + out, {"give either a project or --heightmap"}},
         {"export --heightmap " + path("in.png") + " -o " + path("t.glb") + " --lod-method foo", {"--lod-method: expected grid or simplify"}},
         {"export --heightmap " + path("in.png") + " -o " + path("t.glb") + " --region 1,2,3", {"--region: expected X,Y,W,H"}},
-        {"export --heightmap " + path("in.png") + " -o " + path("t.glb") + " --tile 0", {"--tile: Value 0 not in range 1 to 4096"}},
+        {"export --heightmap " + path("in.png") + " -o " + path("t.glb") + " --tile 0", {"--tile: expected a finite number in [1, 4096], got '0'"}},
         {"export --heightmap " + path("in.png") + " -o " + path("t.obj"), {"t.obj: unknown heightmap extension \".obj\""}},
         {"export --heightmap " + path("in.png") + " --masks " + path("m_") + out, {"--masks needs a project"}},
         {"stats " + path("nope.png"), {"terrasynth stats: ", "nope.png"}},
