@@ -28,23 +28,6 @@ namespace {
 // Breach workers at most: the pits of a level are few and their searches short (docs/realism.md).
 constexpr int kMaxBreachThreads = 8;
 
-// Frozen pixels take the recorded post-breach state; frozen and constrained pixels are never carved.
-void protectedPixels(const DatabaseLevel& db, const DrainageInputs& in, PixelState* state, size_t pixels,
-                     std::vector<uint8_t>& fixed) {
-    fixed.assign(pixels, 0);
-    const bool coherence = in.coherence && in.coherence->size() == pixels;
-    const bool drained = in.drained && in.drained->index.size() == pixels;
-    const bool blend = in.blend && in.blend->size() == 4 * pixels;
-    if (!coherence && !blend) return;  // a synthesis with neither freezes nor constraints
-    for (size_t i = 0; i < pixels; ++i) {
-        if (coherence && (*in.coherence)[i] == static_cast<uint8_t>(Coherence::Frozen)) {
-            fixed[i] = 1;
-            if (drained && in.drained->index[i] != kNoPrevious) takePrevious(db, *in.drained, i, state[i]);
-        }
-        if (blend && (*in.blend)[4 * i] > 0.0f) fixed[i] = 1;
-    }
-}
-
 // One pit's search window: cost, predecessor, region pixel and state per cell of the (2R+1)^2
 // square, stored with a ring of one cell around it that is never entered, so a cell's eight
 // neighbours need no bounds test. Cells are numbered row-major in the ringed square, which orders
@@ -338,7 +321,8 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
     BreachScratch own;
     BreachScratch& buffers = scratch ? *scratch : own;
     std::vector<uint8_t>& fixed = buffers.fixed;
-    protectedPixels(db, inputs, state, pixels, fixed);
+    // Frozen pixels take the recorded post-breach state; frozen and constrained pixels are never carved.
+    holdFrozenAndConstrained(db, inputs.coherence, inputs.drained, inputs.blend, pixels, state, fixed);
     // Pits that can reach the needed pixels: within `radius` of them (interior pixels only).
     int x0 = 1, y0 = 1, x1 = w - 2, y1 = h - 2;
     if (inputs.needed.width > 0 && inputs.needed.height > 0) {

@@ -54,23 +54,6 @@ int atlasIndex(const DatabaseLevel& db, const PixelState& s) {
     return static_cast<int>(std::lround(s.y)) * db.width + static_cast<int>(std::lround(s.x));
 }
 
-// 1 for pixels the relaxation leaves as they are; frozen pixels take their recorded relaxed state.
-std::vector<uint8_t> fixedPixels(const DatabaseLevel& db, const RelaxationInputs& in, size_t pixels, PixelState* state) {
-    std::vector<uint8_t> fixed(pixels, 0);
-    const bool coherence = in.coherence && in.coherence->size() == pixels;
-    const bool relaxed = in.relaxed && in.relaxed->index.size() == pixels;
-    const bool blend = in.blend && in.blend->size() == 4 * pixels;
-    for (size_t i = 0; i < pixels; ++i) {
-        if (coherence && (*in.coherence)[i] == static_cast<uint8_t>(Coherence::Frozen)) {
-            fixed[i] = 1;
-            if (relaxed && in.relaxed->index[i] != kNoPrevious) takePrevious(db, *in.relaxed, i, state[i]);
-        }
-        if (blend && (*in.blend)[4 * i] > 0.0f) fixed[i] = 1;
-        if (std::isfinite(state[i].ceiling)) fixed[i] = 1;
-    }
-    return fixed;
-}
-
 // One Jacobi iteration over the `width` pixels of a band row starting at `row`. The four directions
 // are spelled out so the loop vectorises: one lane per pixel, each adding its terms in this order.
 void relaxRow(int width, size_t row, const ptrdiff_t* offset, const float* __restrict w0, const float* __restrict w1,
@@ -167,7 +150,12 @@ void relaxOffsets(const DatabaseLevel& db, const LevelRegion& region, double spa
     const int h = region.height;
     const size_t pixels = region.pixels();
     if (iterations <= 0 || pixels == 0) return;
-    const std::vector<uint8_t> fixed = fixedPixels(db, inputs, pixels, state);
+    // Frozen pixels take their recorded relaxed state; they, constrained pixels and those carrying a
+    // drainage ceiling keep their V.
+    std::vector<uint8_t> fixed;
+    holdFrozenAndConstrained(db, inputs.coherence, inputs.relaxed, inputs.blend, pixels, state, fixed);
+    for (size_t i = 0; i < pixels; ++i)
+        if (std::isfinite(state[i].ceiling)) fixed[i] = 1;
     const float gentle = static_cast<float>(std::tan(kRelaxFlatSlopeDegrees * M_PI / 180.0) * spacing_m);
     std::vector<float> relaxed(pixels);
     const int bands = (h + kBandRows - 1) / kBandRows;

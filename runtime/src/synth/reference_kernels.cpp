@@ -80,6 +80,23 @@ void takePrevious(const DatabaseLevel& db, const PassHistory& previous, size_t p
     out.v = previous.v[pixel];
 }
 
+void holdFrozenAndConstrained(const DatabaseLevel& db, const std::vector<uint8_t>* coherence, const PassHistory* recorded,
+                              const std::vector<float>* blend, size_t pixels, PixelState* state,
+                              std::vector<uint8_t>& fixed) {
+    fixed.assign(pixels, 0);
+    const bool frozen = coherence && coherence->size() == pixels;
+    const bool have_recorded = recorded && recorded->index.size() == pixels;
+    const bool constrained = blend && blend->size() == 4 * pixels;
+    if (!frozen && !constrained) return;  // a synthesis with neither freezes nor constraints
+    for (size_t i = 0; i < pixels; ++i) {
+        if (frozen && (*coherence)[i] == static_cast<uint8_t>(Coherence::Frozen)) {
+            fixed[i] = 1;
+            if (have_recorded && recorded->index[i] != kNoPrevious) takePrevious(db, *recorded, i, state[i]);
+        }
+        if (constrained && (*blend)[4 * i] > 0.0f) fixed[i] = 1;
+    }
+}
+
 namespace {
 
 int wrapInto(int v, int n) {

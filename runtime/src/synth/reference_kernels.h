@@ -38,6 +38,14 @@ struct PixelState {
 // coordinate and offset V; its ceiling is unchanged.
 void takePrevious(const DatabaseLevel& db, const PassHistory& previous, size_t pixel, PixelState& out);
 
+// The pixels a step after the correction passes (offset relaxation, drainage) leaves as they are,
+// 1 per region pixel in `fixed`: frozen ones (s5.3), which first take `recorded` (the previous
+// synthesis's state after that step) where it has them, and those under a point or curve
+// constraint (blend > 0). Any input may be null or of the wrong size (none of that kind).
+void holdFrozenAndConstrained(const DatabaseLevel& db, const std::vector<uint8_t>* coherence, const PassHistory* recorded,
+                              const std::vector<float>* blend, size_t pixels, PixelState* state,
+                              std::vector<uint8_t>& fixed);
+
 // Irregular patches of exemplar coordinates, each pixel from its share cell's exemplar
 // (synth/initial_patches.h): at the coarsest level every pixel (V = 0, no drainage ceiling); with
 // admit_only, at a finer level, the pixels of the exemplars entering there (V and ceiling kept).
