@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "temporary_names.h"
 #include "test_support.h"
 #include "wait_until.h"
 
@@ -35,16 +36,6 @@ int countGlbs(const std::string& world) {
          it.increment(ec))
         n += it->path().extension() == ".glb";
     return n;
-}
-
-// This machine's name as FileTransaction puts it into temporary names ('.' and '/' as '_').
-std::string hostTag() {
-    char name[256] = {};
-    ::gethostname(name, sizeof name - 1);
-    std::string t = name;
-    for (char& c : t)
-        if (c == '.' || c == '/') c = '_';
-    return t;
 }
 
 class BakeHostile : public ::testing::Test {
@@ -142,9 +133,9 @@ TEST_F(BakeHostile, AKilledBakeRerunRemovesOnlyDeadWritersTemporaries) {
     // What a writer killed mid-file leaves (the killed process's name), and one of a live process
     // (this test's), which the re-run must not touch.
     const std::string tile = world + "/tiles/3/0/0.glb";
-    const std::string stale = tile + ".tmp." + hostTag() + "." + std::to_string(pid) + ".7";
-    const std::string live = tile + ".tmp." + hostTag() + "." + std::to_string(::getpid()) + ".0";
-    const std::string stale_backup = tile + ".bak." + hostTag() + "." + std::to_string(pid) + ".8";
+    const std::string stale = test::temporaryOf(tile, pid, 7);
+    const std::string live = test::temporaryOf(tile, ::getpid());
+    const std::string stale_backup = tile + ".bak." + test::hostTag() + "." + std::to_string(pid) + ".8";
     fs::create_directories(fs::path(tile).parent_path());
     for (const std::string& f : {stale, live, stale_backup}) writeAll(f, "half a tile");
     const test::CliRun rerun = bake(world);

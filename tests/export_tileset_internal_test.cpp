@@ -20,6 +20,7 @@
 #include "export/tileset_plan.h"
 #include "terrasynth/file_transaction.h"
 #include "terrasynth/tileset_bake.h"
+#include "temporary_names.h"
 #include "test_support.h"
 
 using namespace terrasynth;
@@ -27,16 +28,6 @@ using namespace terrasynth::bake_detail;
 namespace fs = std::filesystem;
 
 namespace {
-
-// This machine's name as FileTransaction puts it into temporary names ('.' and '/' as '_').
-std::string hostTag() {
-    char name[256] = {};
-    ::gethostname(name, sizeof name - 1);
-    std::string t = name;
-    for (char& c : t)
-        if (c == '.' || c == '/') c = '_';
-    return t;
-}
 
 // Level k of a real DEM: the mean of each 2^k x 2^k block of level-0 samples, the DEM mirrored
 // beyond its edges (so the world is unbounded and windows agree bit for bit).
@@ -246,9 +237,8 @@ TEST(TilesetBake, RerunBakesOnlyMissingTilesAndClearsItsOwnTemporaries) {
     if (dead == 0) ::_exit(0);
     ASSERT_GT(dead, 0);
     ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
-    const std::string mine_tmp = mine_glb + ".tmp." + hostTag() + "." + std::to_string(dead) + ".0";
-    const std::string theirs_tmp =
-        dir + "/" + tree.tilePath(theirs, ".glb") + ".tmp." + hostTag() + "." + std::to_string(::getpid()) + ".0";
+    const std::string mine_tmp = test::temporaryOf(mine_glb, dead);
+    const std::string theirs_tmp = test::temporaryOf(dir + "/" + tree.tilePath(theirs, ".glb"), ::getpid());
     ASSERT_TRUE(FileTransaction::isStaleTemporary(fs::path(mine_tmp).filename().string()));
     std::ofstream(mine_tmp) << "half a tile";
     fs::create_directories(fs::path(theirs_tmp).parent_path());
