@@ -20,8 +20,6 @@ struct SpanArg {
     cl_int x0, y0, x1, y1;  // inclusive
 };
 
-size_t roundUp(size_t value, size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
-
 // Bytes of search scratch per window cell: cost, mark, parent step, heap place, heap entry.
 constexpr size_t kSearchBytesPerCell = sizeof(cl_float) + sizeof(cl_uint) + 1 + sizeof(cl_int) + sizeof(cl_ulong);
 // GPU: searches per compute unit (one warp), and the most scratch they may take. A level's few
@@ -99,13 +97,7 @@ Result<BufferHandle> DeviceBreach::upload(const void* data, size_t bytes, const 
 }
 
 Status DeviceBreach::reserve(BufferHandle& buffer, size_t& capacity, size_t bytes, const char* what) {
-    bytes = std::max<size_t>(bytes, 16);
-    if (buffer && capacity >= bytes) return Status::ok();
-    cl_int err = CL_SUCCESS;
-    *buffer.out() = clCreateBuffer(context_, CL_MEM_READ_WRITE, bytes, nullptr, &err);
-    TS_CL_CHECK_NAMED(err, std::string("clCreateBuffer(") + what + ", " + std::to_string(bytes) + " bytes)");
-    capacity = bytes;
-    return Status::ok();
+    return reserveBuffer(context_, buffer, capacity, std::max<size_t>(bytes, 16), what);  // never an empty buffer
 }
 
 Status DeviceBreach::reserveSearch(cl_command_queue queue, size_t workers, size_t cells) {

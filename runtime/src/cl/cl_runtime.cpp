@@ -106,4 +106,13 @@ Result<ProgramHandle> buildProgram(cl_context context, cl_device_id device, cons
     return program;
 }
 
+Status reserveBuffer(cl_context context, BufferHandle& buffer, size_t& capacity, size_t bytes, const char* what) {
+    if (buffer && capacity >= bytes) return Status::ok();
+    cl_int err = CL_SUCCESS;
+    *buffer.out() = clCreateBuffer(context, CL_MEM_READ_WRITE, bytes, nullptr, &err);
+    TS_CL_CHECK_NAMED(err, std::string("clCreateBuffer(") + what + ", " + std::to_string(bytes) + " bytes)");
+    capacity = bytes;
+    return Status::ok();
+}
+
 }  // namespace terrasynth::cl

@@ -84,6 +84,13 @@ Result<std::string> kernelSource(const std::string& file_name);
 Result<ProgramHandle> buildProgram(cl_context context, cl_device_id device, const std::vector<std::string>& files,
                                    const std::string& options);
 
+// A global work size: `value` rounded up to a multiple of the work-group size (PoCL requires it).
+inline size_t roundUp(size_t value, size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
+
+// Grows `buffer` (read-write, uninitialised) to at least `bytes`, `capacity` its size in bytes;
+// never shrinks, so windows of one size reuse it. A failure names `what` and the size.
+Status reserveBuffer(cl_context context, BufferHandle& buffer, size_t& capacity, size_t bytes, const char* what);
+
 // Sets kernel arguments in order, each checked; the message names the kernel and argument index.
 class ArgSetter {
 public:

@@ -44,8 +44,6 @@ void localSize(size_t out[2]) {
     }
 }
 
-size_t roundUp(size_t value, size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
-
 class OpenClSynthesizer final : public Synthesizer, private synth::SynthesisSteps {
 public:
     explicit OpenClSynthesizer(std::shared_ptr<const ExemplarDatabase> db) : Synthesizer(std::move(db)) {}
@@ -171,19 +169,14 @@ private:
         return Status::ok();
     }
 
-    // Grows a buffer to hold `pixels` float4s (a state's pixels, or one int4 per patch cell; never
-    // shrinks, so tiles of one size reuse it).
+    // Grows a buffer to hold `pixels` float4s (a state's pixels, or one int4 per patch cell); the
+    // capacities are in bytes.
     Status reserve(BufferHandle& buffer, size_t& capacity, size_t pixels, const char* what = "state") {
-        if (capacity >= pixels && buffer) return Status::ok();
-        cl_int err = CL_SUCCESS;
-        *buffer.out() = clCreateBuffer(context_.get(), CL_MEM_READ_WRITE, pixels * sizeof(cl_float4), nullptr, &err);
-        TS_CL_CHECK_NAMED(err, std::string("clCreateBuffer(") + what + ", " + std::to_string(pixels * sizeof(cl_float4)) + " bytes)");
-        capacity = pixels;
-        return Status::ok();
+        return cl::reserveBuffer(context_.get(), buffer, capacity, pixels * sizeof(cl_float4), what);
     }
 
     Status run(cl_kernel kernel, size_t width, size_t height) {
-        const size_t global[2] = {roundUp(width, local_[0]), roundUp(height, local_[1])};
+        const size_t global[2] = {cl::roundUp(width, local_[0]), cl::roundUp(height, local_[1])};
         TS_CL_CHECK(clEnqueueNDRangeKernel(queue_.get(), kernel, 2, nullptr, global, local_, 0, nullptr, nullptr));
         return Status::ok();
     }
