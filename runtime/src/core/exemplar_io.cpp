@@ -14,7 +14,6 @@
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/limits.h"
 
-
 namespace terrasynth {
 namespace {
 

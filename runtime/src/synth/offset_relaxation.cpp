@@ -159,9 +159,9 @@ void relaxOffsets(const DatabaseLevel& db, const LevelRegion& region, double spa
     const float gentle = static_cast<float>(std::tan(kRelaxFlatSlopeDegrees * M_PI / 180.0) * spacing_m);
     std::vector<float> relaxed(pixels);
     const int bands = (h + kBandRows - 1) / kBandRows;
-    runOnWorkers(std::min(hardwareThreads(), bands), [&](int worker) {
+    const int workers = std::min(hardwareThreads(), bands);
+    runOnWorkers(workers, [&](int worker) {
         BandScratch scratch;
-        const int workers = std::min(hardwareThreads(), bands);
         for (int band = worker; band < bands; band += workers) {
             const int y0 = band * kBandRows, y1 = std::min(h, y0 + kBandRows);
             relaxBand(db, region, gentle, iterations, fixed, state, y0, y1, std::max(0, y0 - iterations),
