@@ -16,7 +16,7 @@ usage:
                             [--multi] [--json out.json] [--jobs 2] [--keep]
 Needs Debian's python3 with numpy, scipy and PIL (the realism instrument's dependencies).
 """
-import argparse, concurrent.futures as cf, glob, json, os, subprocess, sys, time
+import argparse, concurrent.futures as cf, glob, json, os, statistics, subprocess, sys, time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -166,9 +166,8 @@ def summary(rows):
     lines.append(f'\nissue 16 goal missed by {fails16} of {len(by)}; issue 17 goal missed by {fails17}')
     aucs = {n: [r['discriminator']['auc_lr_src'] for r in rs if r.get('discriminator')] for n, rs in by.items()}
     if any(aucs.values()):
-        every = sorted(a for v in aucs.values() for a in v)
-        worst = max(every)
-        median = every[len(every) // 2] if len(every) % 2 else 0.5 * (every[len(every) // 2 - 1] + every[len(every) // 2])
+        every = [a for v in aucs.values() for a in v]
+        worst, median = max(every), statistics.median(every)
         lines.append('\n| exemplar | copy-aware AUC per seed |\n|---|---|')
         lines += [f'| {n} | {" ".join(f"{a:.2f}" for a in aucs[n])} |' for n in sorted(aucs)]
         lines.append(f'\ndiscriminator: median {median:.3f}, worst {worst:.2f} over {len(every)} syntheses')
