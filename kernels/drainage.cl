@@ -300,6 +300,19 @@ TS_INLINE int search_path(global const float* z, global const uchar* fixed, int 
     return fallback >= 0 ? fallback : edge;  // -1 when no edge cell (or no to_edge)
 }
 
+// The cell carved beside a diagonal step from `from` to `to` (region pixels), so that the channel
+// is 4-connected: of the two pixels both touch by a side the lower (ties: the one in `from`'s row),
+// never a protected one; -1 for a straight step or when both are protected (diagonalCorner in
+// synth/drainage_breach.cpp).
+TS_INLINE int diagonal_corner(global const float* z, global const uchar* fixed, int use_fixed, int w, int from, int to) {
+    const int dx = to % w - from % w, dy = to / w - from / w;
+    if (dx == 0 || dy == 0) return -1;
+    const int in_row = from + dx, in_column = from + dy * w;
+    const bool row_open = !(use_fixed && fixed[in_row]), column_open = !(use_fixed && fixed[in_column]);
+    if (row_open && column_open) return z[in_row] <= z[in_column] ? in_row : in_column;
+    return row_open ? in_row : (column_open ? in_column : -1);
+}
+
 // The searches: `workers` work-items take the listed pits in turn (counters[1]) and carve each path
 // found to a straight profile from the pit down to its end (atomic_min of the carved heights); the
 // first carve of a pixel appends it to `carved` (counters[2] counts them). serial_base + the pit's
@@ -310,7 +323,8 @@ kernel void breach_search(global const float* z, global const uchar* fixed, int 
                           global const uchar* basin_exemplars, uint basin_count, global const int* pits,
                           volatile global int* counters, uint serial_base, global float* cost, global uint* mark,
                           global uchar* parent, global int* heap_pos, global ulong* heap,
-                          volatile global int* carve, global int* carved) {
+                          volatile global int* carve, global int* carved, global const float* heights,
+                          global const uchar* level_ground, int use_level_ground, float level_tolerance) {
     const int w = region.width, h = region.height, side = 2 * radius + 1;
     const Scratch s = {cost, mark, parent, heap_pos, heap, get_global_id(0) * (size_t)(side * side)};
     const int count = counters[0];
@@ -343,17 +357,32 @@ kernel void breach_search(global const float* z, global const uchar* fixed, int 
         const float top = bottom;
         const float lowest = z[end_pixel] < top ? z[end_pixel] : top - (margin < BREACH_EDGE_DROP ? BREACH_EDGE_DROP : margin);
         const float k_last = (float)cells;
+        const uint pit_source = source_pixel(state, pit, width);
+        const bool pit_level = use_level_ground && level_ground[pit_source];
         int c = end;
         for (int i = cells; i >= 0; --i) {
             const int g = pit + (c / side - radius) * w + (c % side - radius);
             const float line = top - (top - lowest) * ((float)i / k_last);
             const float zg = z[g];
+            // The level ground the pit lies in stays level (onPitsLevelGround in drainage_breach.cpp).
+            const uint cell_source = source_pixel(state, g, width);
+            const bool level = pit_level && zg - top <= level_tolerance && level_ground[cell_source] &&
+                               fabs(heights[cell_source] - heights[pit_source]) <= level_tolerance;
             // + 0.0f: a carve of -0 counts as +0, so equal carves are equal keys.
-            if (atomic_min(&carve[g], ordered_key((line < zg ? line : zg) + 0.0f)) == NO_CARVE)
+            if (!level && atomic_min(&carve[g], ordered_key((line < zg ? line : zg) + 0.0f)) == NO_CARVE)
                 carved[atomic_inc(&counters[2])] = g;
             if (i > 0) {
                 const int k = s.parent[AT(s, c)];
                 c -= dys[k] * side + dxs[k];
+                // The step from the parent (path cell i - 1) to g; a diagonal one carves a corner too
+                // (unless g is not carved).
+                const int corner = level ? -1 : diagonal_corner(z, fixed, use_fixed, w, g - dys[k] * w - dxs[k], g);
+                if (corner >= 0) {
+                    const float midway = top - (top - lowest) * (((float)i - 0.5f) / k_last);
+                    const float zc = z[corner];
+                    if (atomic_min(&carve[corner], ordered_key((midway < zc ? midway : zc) + 0.0f)) == NO_CARVE)
+                        carved[atomic_inc(&counters[2])] = corner;
+                }
             }
         }
     }

@@ -232,7 +232,8 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                     global const uint* type_seeds, global const int2* seed_ranges, uint seed_salt,
                     global const float4* blend, int use_blend, global const float* heights, global const uint* prev_index,
                     global const float* prev_v, global const uchar* coherence, int use_prev,
-                    global const uchar* atlas_exemplar, global const uchar* layout, int use_layout) {
+                    global const uchar* atlas_exemplar, global const uchar* layout, int use_layout,
+                    global const uchar* level_ground, float level_tolerance) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width - inset || ly >= region.height - inset) return;
     const int pixel = ly * region.width + lx;
@@ -349,6 +350,20 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         best_h = h;
     }
     float v = keep_v ? prev_v[pixel] : best_h * scale.x;
+    if (!keep_v && level_ground[best_q]) {
+        // Level ground settles as water does (synth/level_ground.h): no higher than its lowest
+        // neighbour copied from the same level ground (a level source of the same height).
+        const float own = heights[best_q];
+        float lowest = INFINITY;
+        for (int ddy = -1; ddy <= 1; ++ddy)
+            for (int ddx = -1; ddx <= 1; ++ddx) {
+                if (ddx == 0 && ddy == 0) continue;
+                const float4 s = state_at(state, region, lx + ddx, ly + ddy);
+                const int q = floor_nonneg(s.y + 0.5f) * width + floor_nonneg(s.x + 0.5f);
+                if (level_ground[q] && fabs(heights[q] - own) <= level_tolerance) lowest = fmin(lowest, heights[q] + s.z);
+            }
+        if (lowest < INFINITY) v = fmin(v, lowest - own);
+    }
     const float4 sums = use_blend ? blend[pixel] : (float4)(0.0f);  // sum b, sum b*h_t, sum b*d (s5.1)
     const bool constrained = sums.x > 0.0f;
     if (constrained && !keep_v) {

@@ -3,7 +3,8 @@
 // (DrainageInputs::carve_to_edge), and a protected pixel is never lowered (drainage_breach.h).
 // A path goes to a pixel depth_margin below the pit when one is within reach, else to the first
 // lower pixel the search meets (the search stops there early when the window's minimum says the
-// margin is out of reach).
+// margin is out of reach). Diagonal steps carve a side cell too, and the level ground a pit lies in
+// is not carved.
 // The synthesis is a cone of height offsets V over a level exemplar, so its apex-down centre is the
 // lowest pixel of the whole region.
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "synth/drainage_breach.h"
+#include "synth/level_ground.h"
 
 namespace terrasynth::synth {
 namespace {
@@ -56,13 +58,17 @@ float minOnWindowEdge(const std::vector<PixelState>& state) {
 }
 
 BreachCounts breach(std::vector<PixelState>& state, bool to_edge, const std::vector<float>* blend = nullptr,
-                    float depth_margin = 0.0f, const std::vector<uint8_t>* basin_exemplars = nullptr) {
+                    float depth_margin = 0.0f, const std::vector<uint8_t>* basin_exemplars = nullptr,
+                    float level_tolerance = -1.0f) {
     const DatabaseLevel db = levelExemplar();
     DrainageInputs in;
     in.carve_to_edge = to_edge;
     in.blend = blend;
     in.depth_margin = depth_margin;
     in.basin_exemplars = basin_exemplars;
+    // The level exemplar is level ground everywhere but on its outer ring (levelGroundFlags).
+    const std::vector<uint8_t> level_ground = levelGroundFlags(db, level_tolerance);
+    if (level_tolerance >= 0.0f) in.level_ground = &level_ground, in.level_tolerance = level_tolerance;
     return breachPits(db, {0, 0, kSide, kSide}, kRadius, in, state.data());
 }
 
@@ -197,6 +203,56 @@ TEST(Drainage, APathCostsItsLengthSoDiagonalsAreNotFree) {
     breach(state, false);
     for (int i = 1; i < 6; ++i) EXPECT_LT(vAt(state, kCentre + i, kCentre), 0.0f) << "east, " << i;
     for (int i = 1; i < 5; ++i) EXPECT_EQ(vAt(state, kCentre + i, kCentre + i), 10.0f) << "diagonal, " << i;
+}
+
+TEST(Drainage, ADiagonalPathIsCarvedSideBySide) {
+    // The only outlet is 5 pixels diagonally south-east. Carved cells of a diagonal meet only at
+    // their corners, which at 1:1 read as a dashed line of pits; each diagonal step also carves one
+    // of the two cells both touch by a side, to the profile's height between them.
+    std::vector<PixelState> state = plain(10.0f);
+    vAt(state, kCentre, kCentre) = 0.0f;
+    vAt(state, kCentre + 5, kCentre + 5) = -1.0f;
+    breach(state, false);
+    for (int i = 0; i < 5; ++i) {
+        const float from = vAt(state, kCentre + i, kCentre + i), to = vAt(state, kCentre + i + 1, kCentre + i + 1);
+        const float beside = std::min(vAt(state, kCentre + i + 1, kCentre + i), vAt(state, kCentre + i, kCentre + i + 1));
+        EXPECT_LT(to, from) << "the path descends, step " << i;
+        EXPECT_LT(beside, 10.0f) << "no side cell carved, step " << i;
+        EXPECT_LE(beside, from) << "step " << i;
+        EXPECT_GE(beside, to) << "step " << i;
+    }
+}
+
+// A lake: level ground 5 pixels square at 0 m on the plain at 10 m (the exemplar is level, so
+// every source is level ground at the same height), an outlet 2 m below it 3 pixels east of its
+// shore, within the radius of the lake's pit (its first pixel). Returns V after the breach, with
+// level ground at this tolerance, or none (negative).
+constexpr int kLakeLow = 18, kLakeHigh = 22, kOutlet = 25;
+std::vector<PixelState> lakeAfterBreach(float level_tolerance) {
+    std::vector<PixelState> state = plain(10.0f);
+    for (int y = kLakeLow; y <= kLakeHigh; ++y)
+        for (int x = kLakeLow; x <= kLakeHigh; ++x) vAt(state, x, y) = 0.0f;
+    vAt(state, kOutlet, kCentre) = -2.0f;
+    breach(state, false, nullptr, 0.0f, nullptr, level_tolerance);
+    return state;
+}
+
+TEST(Drainage, ALakeOfLevelGroundStaysLevelAndDrainsThroughItsRim) {
+    std::vector<PixelState> state = lakeAfterBreach(0.5f);
+    for (int y = kLakeLow; y <= kLakeHigh; ++y)
+        for (int x = kLakeLow; x <= kLakeHigh; ++x) ASSERT_EQ(vAt(state, x, y), 0.0f) << "lake pixel " << x << ", " << y;
+    // The rim between the shore and the outlet is cut below the lake, whichever row the path takes.
+    for (int x = kLakeHigh + 1; x < kOutlet; ++x) {
+        float lowest = INFINITY;
+        for (int y = kLakeLow; y <= kLakeHigh; ++y) lowest = std::min(lowest, vAt(state, x, y));
+        EXPECT_LT(lowest, 0.0f) << "rim column " << x;
+    }
+    // Carving every path cell (no tolerance) draws a trench across the lake from its pit.
+    std::vector<PixelState> trenched = lakeAfterBreach(-1.0f);
+    int below = 0;
+    for (int y = kLakeLow; y <= kLakeHigh; ++y)
+        for (int x = kLakeLow; x <= kLakeHigh; ++x) below += vAt(trenched, x, y) < 0.0f;
+    EXPECT_GE(below, 3);
 }
 
 }  // namespace

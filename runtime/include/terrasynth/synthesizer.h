@@ -63,6 +63,10 @@ constexpr int kMinCoarsestSide = 40;
 // exemplar position each, wrapped around the exemplar's interior) instead of independent random
 // pixels.
 constexpr int kInitialPatchSize = 24;
+// Level ground (beyond the paper): a pixel whose source is level (its 8 exemplar neighbours within
+// tan 0.5 degrees times the database's spacing of it: lakes, sea, flat floors) goes no higher than
+// its lowest neighbour copied from the same level ground, so copied water settles level instead of
+// being tilted by the offsets V. Always on; a local rule, so windows stay exact.
 
 // Drainage (beyond the paper, whose s6 notes that pixel-based synthesis drains
 // unrealistically). Breach: after the correction passes of every level, each closed pit looks for the
@@ -76,7 +80,9 @@ constexpr int kInitialPatchSize = 24;
 // Bounded reach: a pixel depends on heights within 2 * breachRadius(level) + 1
 // pixels, which the window plan adds to that level's margin, so windows stay bit-identical to
 // larger windows. Frozen pixels and pixels under point or curve constraints are never carved (a
-// path may end at a lower one). Breach is the default: without it, one-exemplar syntheses of
+// path may end at a lower one), nor is the level ground the pit lies in (a lake stays level and the
+// path cuts its rim); a diagonal step also carves one cell beside it, so channels are 4-connected.
+// Breach is the default: without it, one-exemplar syntheses of
 // fluvial terrain leave 8-27 percentage points more of their area in closed depressions than their
 // exemplars (docs/realism.md). Cost: every level's region grows by the reach, and the breach's
 // search runs on the OpenCL device (on a CPU device, the same search on the host; both backends

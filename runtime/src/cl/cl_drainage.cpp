@@ -225,7 +225,8 @@ Status DeviceBreach::run(cl_command_queue queue, const DrainageLevelBuffers& lev
             region_arg)(cl_int{radius})(inputs.depth_margin)(cl_int{inputs.carve_to_edge ? 1 : 0})(level.exemplar)(
             level.atlas_pixels)(level.width)(basins_ ? basins_.get() : placeholder)(basin_count)(pits_.get())(
             counters_.get())(serial_base_)(cost_.get())(mark_cells_.get())(parent_.get())(heap_pos_.get())(heap_.get())(
-            carve_.get())(carved_.get());
+            carve_.get())(carved_.get())(level.heights)(level.level_ground ? level.level_ground : placeholder)(
+            cl_int{level.level_ground ? 1 : 0})(inputs.level_tolerance);
         if (!search.status()) return search.status();
         s = run1d(queue, search_.get(), workers, local);
         if (!s) return s;

@@ -24,6 +24,7 @@ struct DrainageLevelBuffers {
     cl_mem closed = nullptr;
     cl_int width = 0;
     cl_uint atlas_pixels = 0, closed_pixels = 0;
+    cl_mem level_ground = nullptr;  // uchar per atlas pixel (synth::levelGroundFlags); null: none
 };
 
 // synth::DrainageInputs with the per-pixel arrays the synthesizer already holds on the device.
@@ -35,6 +36,7 @@ struct DeviceDrainageInputs {
     bool carve_to_edge = false;
     synth::LevelRegion needed;                    // empty: the whole region
     const std::vector<uint8_t>* basin_exemplars = nullptr;  // uploaded once (they are the database's)
+    float level_tolerance = 0.0f;                           // synth::DrainageInputs::level_tolerance
 };
 
 // Kernels and scratch buffers of the device breach; one per synthesizer (not thread-safe). Scratch

@@ -11,6 +11,7 @@
 #include "core/hash.h"
 #include "cl/cl_synthesizer.h"
 #include "synth/initial_patches.h"
+#include "synth/level_ground.h"
 #include "synth/reference_kernels.h"
 #include "synth/synthesis_driver.h"
 #include "synth/type_seeds.h"
@@ -29,6 +30,7 @@ RegionArg toArg(const synth::LevelRegion& r) { return {r.x, r.y, r.width, r.heig
 
 struct DeviceLevel {
     BufferHandle appearance, candidates, exemplar, rects, heights, types, type_seeds, seed_ranges, closed;
+    BufferHandle level_ground;  // synth::levelGroundFlags, uchar per atlas pixel
     cl_int width = 0;
     cl_uint pixels = 0, closed_pixels = 0;
     cl_float4 offset{}, scale{};
@@ -148,8 +150,10 @@ private:
             auto type_seeds = upload(table.seeds.data(), table.seeds.size() * sizeof(uint32_t));
             auto seed_ranges = upload(table.ranges.data(), table.ranges.size() * sizeof(int32_t));
             auto closed = upload(l.closed.data(), l.closed.size());
+            const std::vector<uint8_t>& flags = level_ground_.flags(*db_, static_cast<int>(levels_.size()));
+            auto level_ground = upload(flags.data(), flags.size());
             for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &types, &type_seeds,
-                            &seed_ranges, &closed})
+                            &seed_ranges, &closed, &level_ground})
                 if (!*r) return r->status();
             d.types = std::move(types.value());
             d.type_seeds = std::move(type_seeds.value());
@@ -160,6 +164,7 @@ private:
             d.rects = std::move(rect_buffer.value());
             d.heights = std::move(heights.value());
             d.closed = std::move(closed.value());
+            d.level_ground = std::move(level_ground.value());
             d.width = l.width;
             d.pixels = static_cast<cl_uint>(l.pixelCount());
             d.closed_pixels = static_cast<cl_uint>(l.closed.size());
@@ -300,7 +305,8 @@ private:
         args(current_.get())(toArg(region))(first_x)(first_y)(cl_int(inset))(d.appearance.get())(d.candidates.get())(
             d.width)(d.scale)(target_sets_.get())(use_types_)(d.types.get())(
             d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_)(d.heights.get())(prev_index_.get())(
-            prev_v_.get())(coherence_.get())(use_prev_)(d.exemplar.get())(layout_.get())(cl_int{level == coarsest_ ? 1 : 0});
+            prev_v_.get())(coherence_.get())(use_prev_)(d.exemplar.get())(layout_.get())(cl_int{level == coarsest_ ? 1 : 0})(
+            d.level_ground.get())(synth::LevelGround::tolerance(*db_));
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);
     }
@@ -357,11 +363,14 @@ private:
     Status drain(int level, const synth::LevelRegion& region, int radius, const synth::DrainageInputs& inputs) override {
         if (!breach_on_device_)
             return editMappedState(region, [&](synth::PixelState* state) {
-                synth::breachPits(db_->levels[level], region, radius, inputs, state, &breach_scratch_);
+                synth::DrainageInputs with_level_ground = inputs;
+                with_level_ground.level_ground = &level_ground_.flags(*db_, level);
+                with_level_ground.level_tolerance = synth::LevelGround::tolerance(*db_);
+                synth::breachPits(db_->levels[level], region, radius, with_level_ground, state, &breach_scratch_);
             });
         const DeviceLevel& d = levels_[level];
         const cl::DrainageLevelBuffers buffers{d.heights.get(), d.exemplar.get(), d.closed.get(), d.width, d.pixels,
-                                               d.closed_pixels};
+                                               d.closed_pixels, d.level_ground.get()};
         cl::DeviceDrainageInputs on_device;
         on_device.coherence = has_coherence_ ? coherence_.get() : nullptr;
         on_device.blend = use_blend_ ? blend_.get() : nullptr;
@@ -370,6 +379,7 @@ private:
         on_device.carve_to_edge = inputs.carve_to_edge;
         on_device.needed = inputs.needed;
         on_device.basin_exemplars = inputs.basin_exemplars;
+        on_device.level_tolerance = synth::LevelGround::tolerance(*db_);
         return breach_.run(queue_.get(), buffers, region, radius, on_device, current_.get());
     }
 
@@ -428,6 +438,7 @@ private:
     size_t current_capacity_ = 0, next_capacity_ = 0, cells_capacity_ = 0;
     size_t local_[2] = {32, 2};
     synth::DepthMargins depth_margins_;
+    synth::LevelGround level_ground_;
     cl::DeviceBreach breach_;
     bool breach_on_device_ = true;
     synth::BreachScratch breach_scratch_;  // the host's breach (a CPU device)

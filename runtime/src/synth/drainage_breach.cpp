@@ -265,6 +265,30 @@ void markPits(const std::vector<float>& z, int w, int y, int x0, int x1, std::ve
     }
 }
 
+// Whether path cell `cell`, `rise` metres above its pit, lies on the level ground the pit does
+// (DrainageInputs::level_ground): both copied from level ground at the same source height.
+bool onPitsLevelGround(const DatabaseLevel& db, const DrainageInputs& inputs, const PixelState* state, int pit, int cell,
+                       float rise) {
+    if (!inputs.level_ground || rise > inputs.level_tolerance) return false;
+    const size_t p = sourcePixel(db, state[pit]), c = sourcePixel(db, state[cell]);
+    const std::vector<uint8_t>& level = *inputs.level_ground;
+    return level[p] && level[c] && std::fabs(db.height_m[c] - db.height_m[p]) <= inputs.level_tolerance;
+}
+
+// The cell carved beside a diagonal step of a path from region pixel `from` to `to`, so that the
+// channel is 4-connected: one of the two pixels both touch by a side, the lower (ties: the one in
+// `from`'s row), never a protected one; -1 for a straight step or when both are protected. Carved
+// cells of a diagonal meet only at their corners, and a 45-degree channel across a flat floor read
+// as a dashed line of pits at 1:1 (docs/realism.md, "Known weaknesses").
+int diagonalCorner(const std::vector<float>& z, const std::vector<uint8_t>& fixed, int w, int from, int to) {
+    const int dx = to % w - from % w, dy = to / w - from / w;
+    if (dx == 0 || dy == 0) return -1;
+    const int in_row = from + dx, in_column = from + dy * w;
+    const bool row_open = !fixed[in_row], column_open = !fixed[in_column];
+    if (row_open && column_open) return z[in_row] <= z[in_column] ? in_row : in_column;
+    return row_open ? in_row : column_open ? in_column : -1;
+}
+
 }  // namespace
 
 float breachDepthMargin(const DatabaseLevel& db) {
@@ -396,9 +420,15 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
                 const float bottom = z[path.back()] < top ? z[path.back()] : top - std::max(inputs.depth_margin, kEdgeDrop);
                 const float k = static_cast<float>(path.size() - 1);
                 for (size_t i = 0; i < path.size(); ++i) {
+                    if (onPitsLevelGround(db, inputs, state, path[0], path[i], z[path[i]] - top)) continue;
                     const float line = top - (top - bottom) * (static_cast<float>(i) / k);
                     // + 0.0f: a carve of -0 is +0, so the lowest carve is one value whatever the order.
                     out.carves.push_back({path[i], std::min(z[path[i]], line) + 0.0f});
+                    if (i == 0) continue;
+                    const int corner = diagonalCorner(z, fixed, w, path[i - 1], path[i]);
+                    if (corner < 0) continue;
+                    const float midway = top - (top - bottom) * ((static_cast<float>(i) - 0.5f) / k);
+                    out.carves.push_back({corner, std::min(z[corner], midway) + 0.0f});
                 }
             }
         }

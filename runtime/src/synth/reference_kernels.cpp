@@ -360,6 +360,22 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
             }
             float v = best_h * scale[0];
             if (keep_v) v = context.previous.v[pixel];
+            const uint8_t* level = context.level_ground ? context.level_ground->data() : nullptr;
+            if (!keep_v && level && level[best_q]) {
+                // Level ground settles as water does (level_ground.h): no higher than its lowest
+                // neighbour copied from the same level ground.
+                const float own = db.height_m[static_cast<size_t>(best_q)];
+                float lowest = INFINITY;
+                for (int ddy = -1; ddy <= 1; ++ddy)
+                    for (int ddx = -1; ddx <= 1; ++ddx) {
+                        if (ddx == 0 && ddy == 0) continue;
+                        const PixelState& s = stateAt(state, region, lx + ddx, ly + ddy);
+                        const size_t q = static_cast<size_t>(std::floor(s.y + 0.5f)) * db.width + static_cast<size_t>(std::floor(s.x + 0.5f));
+                        if (level[q] && std::fabs(db.height_m[q] - own) <= context.level_tolerance)
+                            lowest = std::fmin(lowest, db.height_m[q] + s.v);
+                    }
+                if (lowest < INFINITY) v = std::fmin(v, lowest - own);
+            }
             const float ceiling = state[pixel].ceiling;
             // s5.1: the blended target of the constraints reaching this pixel.
             const float* sums =

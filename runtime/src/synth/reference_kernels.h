@@ -67,6 +67,10 @@ struct CorrectionContext {
     std::vector<uint8_t> coherence;  // W^i codes per region pixel (empty: no previous result)
     PassHistory previous;            // the previous result of the current pass (s5.3)
     std::vector<uint8_t> layout;     // the coarsest level's shareLayout exemplars per region pixel (else empty)
+    // The level's levelGroundFlags per atlas pixel and their tolerance (synth/level_ground.h); null:
+    // no level ground.
+    const std::vector<uint8_t>* level_ground = nullptr;
+    float level_tolerance = 0.0f;
 };
 
 // Eq. 3-7 (and the constraints of s5.1-5.2) for the pixels of one parity class, in place.

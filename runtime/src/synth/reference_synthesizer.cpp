@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "synth/initial_patches.h"
+#include "synth/level_ground.h"
 #include "synth/reference_kernels.h"
 #include "synth/synthesis_driver.h"
 
@@ -13,7 +14,8 @@ namespace {
 
 class ReferenceSteps final : public SynthesisSteps {
 public:
-    ReferenceSteps(const ExemplarDatabase& db, DepthMargins& margins) : db_(db), margins_(margins) {}
+    ReferenceSteps(const ExemplarDatabase& db, DepthMargins& margins, LevelGround& level_ground)
+        : db_(db), margins_(margins), level_ground_(level_ground) {}
     Status init(int level, const LevelRegion& region, uint32_t seed) override {
         auto entry = startingEntryLevels(db_, level);
         if (!entry) return entry.status();
@@ -43,6 +45,8 @@ public:
         context_.constraints = constraints;
         context_.seeds = seedTable(db_.levels[level]);
         context_.layout = level == coarsest_ ? layout_ : std::vector<uint8_t>{};
+        context_.level_ground = &level_ground_.flags(db_, level);
+        context_.level_tolerance = LevelGround::tolerance(db_);
         return Status::ok();
     }
     Status beginPass(int, const LevelRegion&, const PassHistory& previous) override {
@@ -77,7 +81,10 @@ public:
         return Status::ok();
     }
     Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) override {
-        breachPits(db_.levels[level], region, radius, inputs, current_.data());
+        DrainageInputs with_level_ground = inputs;
+        with_level_ground.level_ground = &level_ground_.flags(db_, level);
+        with_level_ground.level_tolerance = LevelGround::tolerance(db_);
+        breachPits(db_.levels[level], region, radius, with_level_ground, current_.data());
         return Status::ok();
     }
     Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
@@ -91,6 +98,7 @@ public:
 private:
     const ExemplarDatabase& db_;
     DepthMargins& margins_;
+    LevelGround& level_ground_;
     std::vector<int> entry_levels_;  // entryLevels of the current synthesis
     int coarsest_ = -1;              // its coarsest level, whose passes hold layout_
     std::vector<uint8_t> layout_;    // shareLayout exemplars of the coarsest level's region
@@ -103,7 +111,7 @@ public:
     explicit ReferenceSynthesizer(std::shared_ptr<const ExemplarDatabase> db) : Synthesizer(std::move(db)) {}
     Result<SynthesisOutput> synthesize(const PixelWindow& window, const SynthesisParams& params, int output_level,
                                        bool want_sources) override {
-        ReferenceSteps steps(*db_, margins_);
+        ReferenceSteps steps(*db_, margins_, level_ground_);
         size_t peak = 0;
         auto out = runSynthesis(*db_, window, params, output_level, want_sources, steps, &peak);
         if (out) bytes_per_pixel_ = static_cast<double>(peak * sizeof(PixelState)) / (window.width * window.height) +
@@ -116,6 +124,7 @@ public:
 private:
     double bytes_per_pixel_ = 0.0;
     DepthMargins margins_;
+    LevelGround level_ground_;
 };
 
 }  // namespace
