@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "cl/cl_drainage.h"
@@ -232,6 +233,20 @@ std::unique_ptr<Synthesizer> synthesizerBreachingOn(const char* where,
     return s ? std::move(s.value()) : nullptr;
 }
 
+// Synthesizes `w` with `p` (sources too) breaching on the device and on the host and expects the
+// same bits: heights, exemplar coordinates and exemplars. The host's output; empty when either failed.
+std::optional<SynthesisOutput> sameOnBothBreaches(Synthesizer& device, Synthesizer& host, const PixelWindow& w,
+                                                  const SynthesisParams& p) {
+    auto on_device = device.synthesize(w, p, 0, true), on_host = host.synthesize(w, p, 0, true);
+    EXPECT_TRUE(on_device && on_host) << on_device.message() << on_host.message();
+    if (!on_device || !on_host) return std::nullopt;
+    EXPECT_EQ(on_device.value().heights.heights, on_host.value().heights.heights);
+    EXPECT_EQ(on_device.value().source_x, on_host.value().source_x);
+    EXPECT_EQ(on_device.value().source_y, on_host.value().source_y);
+    EXPECT_EQ(on_device.value().source_exemplar, on_host.value().source_exemplar);
+    return std::move(on_host.value());
+}
+
 TEST(DeviceBreach, WholeSynthesesEqualTheHostBreachBitForBit) {
     // The default settings, then a coherent edit: a point constraint over a frozen box (frozen
     // pixels take the recorded drained state, constrained ones are never carved).
@@ -280,19 +295,15 @@ TEST(DeviceBreach, SynthesesOfADuneFieldAndAFluvialExemplarEqualTheHostBreach) {
     const PixelWindow w{-517, 333, 448, 320};
     SynthesisParams p;
     p.seed = 3;
-    auto on_device = device->synthesize(w, p, 0, true), on_host = host->synthesize(w, p, 0, true);
-    ASSERT_TRUE(on_device && on_host) << on_device.message() << on_host.message();
-    EXPECT_EQ(on_device.value().heights.heights, on_host.value().heights.heights);
-    EXPECT_EQ(on_device.value().source_x, on_host.value().source_x);
-    EXPECT_EQ(on_device.value().source_y, on_host.value().source_y);
-    EXPECT_EQ(on_device.value().source_exemplar, on_host.value().source_exemplar);
-    const auto& from = on_host.value().source_exemplar;
+    const std::optional<SynthesisOutput> on_host = sameOnBothBreaches(*device, *host, w, p);
+    ASSERT_TRUE(on_host);
+    const auto& from = on_host->source_exemplar;
     EXPECT_GT(std::count(from.begin(), from.end(), 0), 0);  // both exemplars are in the window
     EXPECT_GT(std::count(from.begin(), from.end(), 1), 0);
     p.drainage = Drainage::Off;
     auto off = host->synthesize(w, p);
     ASSERT_TRUE(off) << off.message();
-    EXPECT_NE(off.value().heights.heights, on_host.value().heights.heights);  // the breach did act
+    EXPECT_NE(off.value().heights.heights, on_host->heights.heights);  // the breach did act
 }
 
 TEST(DeviceBreach, LevelGroundStaysLevelWithTheSameBitsFromBothBreaches) {
@@ -309,16 +320,13 @@ TEST(DeviceBreach, LevelGroundStaysLevelWithTheSameBitsFromBothBreaches) {
     const PixelWindow w{-40, 210, 256, 256};
     SynthesisParams p;
     p.seed = 3;
-    auto on_device = device->synthesize(w, p, 0, true), on_host = host->synthesize(w, p, 0, true);
-    ASSERT_TRUE(on_device && on_host) << on_device.message() << on_host.message();
-    EXPECT_EQ(on_device.value().heights.heights, on_host.value().heights.heights);
-    EXPECT_EQ(on_device.value().source_x, on_host.value().source_x);
-    EXPECT_EQ(on_device.value().source_y, on_host.value().source_y);
+    const std::optional<SynthesisOutput> on_host = sameOnBothBreaches(*device, *host, w, p);
+    ASSERT_TRUE(on_host);
     // Of the interior pixels copied from level ground, the share whose slope (central differences)
     // is under 0.5 degrees: in this window 14% before level ground, 38% with it.
     const DatabaseLevel& level0 = db.value()->levels[0];
     const std::vector<uint8_t> flags = synth::levelGroundFlags(level0, synth::LevelGround::tolerance(*db.value()));
-    const SynthesisOutput& out = on_host.value();
+    const SynthesisOutput& out = *on_host;
     const double spacing = out.heights.meters_per_pixel_x;
     size_t level_sources = 0, kept_level = 0;
     for (int y = 1; y + 1 < w.height; ++y)

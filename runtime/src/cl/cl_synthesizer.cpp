@@ -150,7 +150,7 @@ private:
             auto type_seeds = upload(table.seeds.data(), table.seeds.size() * sizeof(uint32_t));
             auto seed_ranges = upload(table.ranges.data(), table.ranges.size() * sizeof(int32_t));
             auto closed = upload(l.closed.data(), l.closed.size());
-            const std::vector<uint8_t>& flags = level_ground_.flags(*db_, static_cast<int>(levels_.size()));
+            const std::vector<uint8_t>& flags = levelGround(static_cast<int>(levels_.size()));
             auto level_ground = upload(flags.data(), flags.size());
             for (auto* r : {&appearance, &similar, &exemplar, &rect_buffer, &heights, &types, &type_seeds,
                             &seed_ranges, &closed, &level_ground})
@@ -360,13 +360,11 @@ private:
     // (docs/benchmarks.md, "Drainage cost"). TERRASYNTH_CL_BREACH=device|host overrides the choice.
     float depthMargin(int level) override { return depth_margins_.at(*db_, level); }
     const std::vector<uint8_t>& basinExemplars() override { return depth_margins_.basinExemplars(*db_); }
+    const std::vector<uint8_t>& levelGround(int level) override { return level_ground_.flags(*db_, level); }
     Status drain(int level, const synth::LevelRegion& region, int radius, const synth::DrainageInputs& inputs) override {
         if (!breach_on_device_)
             return editMappedState(region, [&](synth::PixelState* state) {
-                synth::DrainageInputs with_level_ground = inputs;
-                with_level_ground.level_ground = &level_ground_.flags(*db_, level);
-                with_level_ground.level_tolerance = synth::LevelGround::tolerance(*db_);
-                synth::breachPits(db_->levels[level], region, radius, with_level_ground, state, &breach_scratch_);
+                synth::breachPits(db_->levels[level], region, radius, inputs, state, &breach_scratch_);
             });
         const DeviceLevel& d = levels_[level];
         const cl::DrainageLevelBuffers buffers{d.heights.get(), d.exemplar.get(), d.closed.get(), d.width, d.pixels,
@@ -379,7 +377,7 @@ private:
         on_device.carve_to_edge = inputs.carve_to_edge;
         on_device.needed = inputs.needed;
         on_device.basin_exemplars = inputs.basin_exemplars;
-        on_device.level_tolerance = synth::LevelGround::tolerance(*db_);
+        on_device.level_tolerance = inputs.level_tolerance;
         return breach_.run(queue_.get(), buffers, region, radius, on_device, current_.get());
     }
 

@@ -89,7 +89,7 @@ struct DrainageInputs {
     // Per exemplar index (exemplarsWithRealBasins): 1 keeps the regional lows copied from that
     // exemplar instead of carving them to the edge. Null or short: none kept.
     const std::vector<uint8_t>* basin_exemplars = nullptr;
-    // The level's levelGroundFlags and their tolerance (synth/level_ground.h), set by the backend:
+    // The level's levelGroundFlags and their tolerance (synth/level_ground.h):
     // where the pit is copied from level ground, the path's cells copied from the same level ground
     // (a level source at most level_tolerance from the pit's source height) and at most
     // level_tolerance above the pit are not carved, so a path leaves a lake or a flat floor level

@@ -45,7 +45,7 @@ public:
         context_.constraints = constraints;
         context_.seeds = seedTable(db_.levels[level]);
         context_.layout = level == coarsest_ ? layout_ : std::vector<uint8_t>{};
-        context_.level_ground = &level_ground_.flags(db_, level);
+        context_.level_ground = &levelGround(level);
         context_.level_tolerance = LevelGround::tolerance(db_);
         return Status::ok();
     }
@@ -75,16 +75,14 @@ public:
     }
     float depthMargin(int level) override { return margins_.at(db_, level); }
     const std::vector<uint8_t>& basinExemplars() override { return margins_.basinExemplars(db_); }
+    const std::vector<uint8_t>& levelGround(int level) override { return level_ground_.flags(db_, level); }
     Status relax(int level, const LevelRegion& region, int iterations, const RelaxationInputs& inputs) override {
         relaxOffsets(db_.levels[level], region, db_.meters_per_pixel * std::ldexp(1.0, level), iterations, inputs,
                      current_.data());
         return Status::ok();
     }
     Status drain(int level, const LevelRegion& region, int radius, const DrainageInputs& inputs) override {
-        DrainageInputs with_level_ground = inputs;
-        with_level_ground.level_ground = &level_ground_.flags(db_, level);
-        with_level_ground.level_tolerance = LevelGround::tolerance(db_);
-        breachPits(db_.levels[level], region, radius, with_level_ground, current_.data());
+        breachPits(db_.levels[level], region, radius, inputs, current_.data());
         return Status::ok();
     }
     Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "synth/initial_patches.h"
+#include "synth/level_ground.h"
 
 namespace terrasynth::synth {
 
@@ -201,7 +202,8 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         const PassHistory drained = previousPass(params.previous.get(), level, recorded, region);
         Status s = steps.drain(level, region, breachRadius(level),
                                {&coherence, &drained, &level_constraints.blend, steps.depthMargin(level),
-                                level >= kBreachToEdgeFromLevel, plan.needed[level], &steps.basinExemplars()});
+                                level >= kBreachToEdgeFromLevel, plan.needed[level], &steps.basinExemplars(),
+                                &steps.levelGround(level), LevelGround::tolerance(db)});
         if (!s) return s;
         return history ? steps.recordPass(level, region, history->levels[level].passes.back()) : Status::ok();
     };

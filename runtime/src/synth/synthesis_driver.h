@@ -56,6 +56,8 @@ public:
     virtual float depthMargin(int level) = 0;
     // exemplarsWithRealBasins of the database, cached by the backend.
     virtual const std::vector<uint8_t>& basinExemplars() = 0;
+    // levelGroundFlags of a level (level_ground.h), cached by the backend.
+    virtual const std::vector<uint8_t>& levelGround(int level) = 0;
     virtual Status resolve(int level, const LevelRegion& region, const LevelRegion& out, SynthesisOutput& output,
                            bool want_sources) = 0;
 };
