@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+"""flat_sources.py -- does a synthesis keep its exemplar's flats flat? (docs/realism.md, experiment log)
+
+For one-exemplar syntheses written by `terrasynth synth -o OUT.f32 --sources SRC.png` (as
+scripts/realism_survey.py --keep leaves them: WORK/<exemplar>_s<seed>.f32 and _src.png), it reads
+each output pixel's source in the exemplar and reports
+  * flat sources: the share of output pixels copied from exemplar pixels under FLAT_DEG (the
+    discriminator's `flat_abs` threshold), against the exemplar's own share of such pixels;
+  * kept flat: of those output pixels, the share still under FLAT_DEG in the output;
+  * grad V inside patches: the median slope, in degrees, of the offset V = output - E(source) at flat
+    sources two pixels or more from any incoherent link (a neighbour whose source is not the
+    neighbouring exemplar pixel): the tilt V gives the interior of coherent patches.
+Slopes are the realism instrument's (../shared/realism/realism.py, Zevenbergen & Thorne).
+
+usage:
+  scripts/flat_sources.py --work /tmp/survey [--seed 3] [--only orom_alaska,orom_norway]
+Needs Debian's python3 with numpy, scipy and PIL (the realism instrument's dependencies).
+"""
+import argparse
+import json
+import math
+import os
+import sys
+
+import numpy as np
+from PIL import Image
+from scipy import ndimage
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SHARED = os.path.join(os.path.dirname(ROOT), 'shared')
+sys.path.insert(0, os.path.join(SHARED, 'realism'))
+import discriminator  # noqa: E402  (read_png16: PIL truncates 16-bit RGB)
+import realism  # noqa: E402
+
+FLAT_DEG = discriminator.FLAT_DEG
+INTERIOR_PX = 2
+
+
+def load_exemplar(path):
+    meta = json.load(open(path[:-4] + '.json'))
+    raw = np.asarray(Image.open(path)).astype(np.float64)
+    heights = meta['height_min_m'] + raw / 65535 * (meta['height_max_m'] - meta['height_min_m'])
+    return heights, float(meta['meters_per_pixel'][0])
+
+
+def slope_tan(z, h):
+    p, q, *_ = realism.derivatives(z, h)
+    return np.hypot(p, q)
+
+
+def incoherent_links(sx, sy):
+    """1 where some 8-neighbour's source is not the exemplar pixel beside this one's (edges wrap: np.roll)."""
+    out = np.zeros(sx.shape, bool)
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            if dx or dy:
+                out |= (np.roll(sx, (-dy, -dx), (0, 1)) - sx != dx) | (np.roll(sy, (-dy, -dx), (0, 1)) - sy != dy)
+    return out
+
+
+def survey(exemplar_png, out_f32, src_png):
+    E, h = load_exemplar(exemplar_png)
+    src = discriminator.read_png16(src_png).astype(np.int64)
+    if src.shape[2] < 2:
+        raise ValueError(f'{src_png}: not a sources map (RGB expected)')
+    sx = np.clip(src[..., 0], 0, E.shape[1] - 1)
+    sy = np.clip(src[..., 1], 0, E.shape[0] - 1)
+    z = np.fromfile(out_f32, '<f4').astype(np.float64)
+    if z.size != sx.size:
+        raise ValueError(f'{out_f32}: {z.size} heights, the sources map has {sx.size} pixels')
+    z = z.reshape(sx.shape)
+    flat = math.tan(math.radians(FLAT_DEG))
+    g_exemplar = slope_tan(E, h)
+    from_flat = g_exemplar[sy, sx] < flat
+    g_out = slope_tan(z, h)
+    g_offset = slope_tan(z - E[sy, sx], h)
+    inside = from_flat & ~ndimage.binary_dilation(incoherent_links(sx, sy), iterations=INTERIOR_PX)
+    return {'exemplar_flat': float(np.nanmean(g_exemplar < flat)),
+            'flat_sources': float(from_flat.mean()),
+            'kept_flat': float(np.nanmean(g_out[from_flat] < flat)) if from_flat.any() else float('nan'),
+            'grad_v_inside_deg': float(np.degrees(np.arctan(np.nanmedian(g_offset[inside])))) if inside.any() else float('nan')}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument('--work', required=True)
+    ap.add_argument('--exemplars', default=os.path.join(SHARED, 'exemplars'))
+    ap.add_argument('--seed', type=int, default=3)
+    ap.add_argument('--only', default='')
+    a = ap.parse_args()
+    names = sorted(n[:-4] for n in os.listdir(a.exemplars) if n.endswith('.png'))
+    if a.only:
+        names = [n for n in names if n in a.only.split(',')]
+    print('%-24s %9s %9s %9s %12s' % ('exemplar', 'ex flat', 'flat src', 'kept flat', 'grad V deg'))
+    for name in names:
+        out = os.path.join(a.work, f'{name}_s{a.seed}.f32')
+        src = os.path.join(a.work, f'{name}_s{a.seed}_src.png')
+        if not (os.path.exists(out) and os.path.exists(src)):
+            print(f'{name}: no {out} with its sources map; skipped', file=sys.stderr)
+            continue
+        r = survey(os.path.join(a.exemplars, name + '.png'), out, src)
+        print('%-24s %8.2f%% %8.2f%% %8.1f%% %12.2f' % (name, 100 * r['exemplar_flat'], 100 * r['flat_sources'],
+                                                      100 * r['kept_flat'], r['grad_v_inside_deg']))
+
+
+if __name__ == '__main__':
+    main()
