@@ -14,16 +14,14 @@ Slopes are the realism instrument's (../shared/realism/realism.py, Zevenbergen &
 
 usage:
   scripts/flat_sources.py --work /tmp/survey [--seed 3] [--only orom_alaska,orom_norway]
-Needs Debian's python3 with numpy, scipy and PIL (the realism instrument's dependencies).
+Needs Debian's python3 with numpy, scipy, PIL and sklearn (the realism instrument's dependencies).
 """
 import argparse
-import json
 import math
 import os
 import sys
 
 import numpy as np
-from PIL import Image
 from scipy import ndimage
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -34,13 +32,6 @@ import realism  # noqa: E402
 
 FLAT_DEG = discriminator.FLAT_DEG
 INTERIOR_PX = 2
-
-
-def load_exemplar(path):
-    meta = json.load(open(path[:-4] + '.json'))
-    raw = np.asarray(Image.open(path)).astype(np.float64)
-    heights = meta['height_min_m'] + raw / 65535 * (meta['height_max_m'] - meta['height_min_m'])
-    return heights, float(meta['meters_per_pixel'][0])
 
 
 def slope_tan(z, h):
@@ -59,16 +50,16 @@ def incoherent_links(sx, sy):
 
 
 def survey(exemplar_png, out_f32, src_png):
-    E, h = load_exemplar(exemplar_png)
+    exemplar = realism.load(exemplar_png)[0]
+    E, h = exemplar.z, exemplar.dx
     src = discriminator.read_png16(src_png).astype(np.int64)
     if src.shape[2] < 2:
         raise ValueError(f'{src_png}: not a sources map (RGB expected)')
     sx = np.clip(src[..., 0], 0, E.shape[1] - 1)
     sy = np.clip(src[..., 1], 0, E.shape[0] - 1)
-    z = np.fromfile(out_f32, '<f4').astype(np.float64)
-    if z.size != sx.size:
-        raise ValueError(f'{out_f32}: {z.size} heights, the sources map has {sx.size} pixels')
-    z = z.reshape(sx.shape)
+    z = realism.load(out_f32)[0].z  # its sidecar gives the size
+    if z.shape != sx.shape:
+        raise ValueError(f'{out_f32}: {z.shape} heights, the sources map has {sx.shape}')
     flat = math.tan(math.radians(FLAT_DEG))
     g_exemplar = slope_tan(E, h)
     from_flat = g_exemplar[sy, sx] < flat
