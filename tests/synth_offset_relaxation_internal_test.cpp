@@ -41,9 +41,19 @@ std::vector<PixelState> patch(int width, int height, int sx, int sy, float v) {
     return state;
 }
 
-float heightOf(const DatabaseLevel& level, const PixelState& s) {
-    return level.height_m[static_cast<size_t>(std::lround(s.y)) * level.width + std::lround(s.x)] + s.v;
+// `west` with its pixels from column `seam` on taken from `east` (both `width` wide): two patches
+// meeting along a seam the exemplar does not have.
+std::vector<PixelState> seamed(std::vector<PixelState> west, const std::vector<PixelState>& east, int width, int seam) {
+    for (size_t i = 0; i < west.size(); ++i)
+        if (static_cast<int>(i % width) >= seam) west[i] = east[i];
+    return west;
 }
+
+size_t atlasIndexOf(const DatabaseLevel& level, const PixelState& s) {
+    return static_cast<size_t>(std::lround(s.y)) * level.width + std::lround(s.x);
+}
+
+float heightOf(const DatabaseLevel& level, const PixelState& s) { return level.height_m[atlasIndexOf(level, s)] + s.v; }
 
 TEST(OffsetRelaxation, APatchCopiedWholeKeepsItsHeights) {
     double spacing = 0.0;
@@ -59,10 +69,8 @@ TEST(OffsetRelaxation, TheStepWhereTwoPatchesOfGentleGroundMeetCloses) {
     constexpr int kWidth = 96, kHeight = 64, kSeam = 48;
     // West of the seam one piece of the exemplar, east of it another (other ground, hundreds of metres
     // apart in height, and V 25 m higher): a seam the exemplar does not have.
-    std::vector<PixelState> state = patch(kWidth, kHeight, 60, 300, 0.0f);
-    const std::vector<PixelState> east = patch(kWidth, kHeight, 340 - kSeam, 120, 25.0f);
-    for (int y = 0; y < kHeight; ++y)
-        for (int x = kSeam; x < kWidth; ++x) state[static_cast<size_t>(y) * kWidth + x] = east[static_cast<size_t>(y) * kWidth + x];
+    std::vector<PixelState> state =
+        seamed(patch(kWidth, kHeight, 60, 300, 0.0f), patch(kWidth, kHeight, 340 - kSeam, 120, 25.0f), kWidth, kSeam);
     const std::vector<PixelState> before = state;
     // How far the step across the seam is from the exemplar's own step there (the target of the
     // pair, as the relaxation sees it), averaged along the seam.
@@ -97,10 +105,8 @@ TEST(OffsetRelaxation, FixedPixelsKeepTheirOffsetsBitForBit) {
     double spacing = 0.0;
     const DatabaseLevel level = exemplarLevel("orom_appalachians", &spacing);
     constexpr int kSide = 64;
-    std::vector<PixelState> state = patch(kSide, kSide, 60, 300, 0.0f);
-    const std::vector<PixelState> other = patch(kSide, kSide, 300, 60, 30.0f);
-    for (size_t i = 0; i < state.size(); ++i)
-        if (i % kSide >= kSide / 2) state[i] = other[i];  // a seam through the middle, so pixels move
+    // A seam through the middle, so pixels move.
+    std::vector<PixelState> state = seamed(patch(kSide, kSide, 60, 300, 0.0f), patch(kSide, kSide, 300, 60, 30.0f), kSide, kSide / 2);
     const size_t constrained = 20 * kSide + 31, ceiling = 40 * kSide + 32, frozen = 10 * kSide + 33;
     std::vector<float> blend(4 * state.size(), 0.0f);
     blend[4 * constrained] = 1.0f;
@@ -136,20 +142,19 @@ TEST(OffsetRelaxation, LevelGroundKeepsItsOffsetWhereItsNeighboursMove) {
     };
     int sx = -1, sy = -1;
     for (int y = 8; y + kHeight < level.height - 8 && sx < 0; y += 16)
-        for (int x = 8; x + kWidth < level.width - 8 && sx < 0; x += 16)
-            if (levelNearSeam(x, y) >= 100 && levelNearSeam(x, y) <= kHeight * kIterations / 2) sx = x, sy = y;
+        for (int x = 8; x + kWidth < level.width - 8 && sx < 0; x += 16) {
+            const int n = levelNearSeam(x, y);
+            if (n >= 100 && n <= kHeight * kIterations / 2) sx = x, sy = y;
+        }
     ASSERT_GE(sx, 0) << "no level ground beside steeper ground in orom_norway";
-    std::vector<PixelState> state = patch(kWidth, kHeight, sx, sy, 0.0f);
-    const std::vector<PixelState> east = patch(kWidth, kHeight, 400 - kSeam, 300, 25.0f);
-    for (int y = 0; y < kHeight; ++y)
-        for (int x = kSeam; x < kWidth; ++x) state[static_cast<size_t>(y) * kWidth + x] = east[static_cast<size_t>(y) * kWidth + x];
+    const std::vector<PixelState> state =
+        seamed(patch(kWidth, kHeight, sx, sy, 0.0f), patch(kWidth, kHeight, 400 - kSeam, 300, 25.0f), kWidth, kSeam);
     std::vector<PixelState> held = state, free = state;
     relaxOffsets(level, {0, 0, kWidth, kHeight}, spacing, kIterations, {nullptr, nullptr, nullptr, &flags}, held.data());
     relaxOffsets(level, {0, 0, kWidth, kHeight}, spacing, kIterations, {}, free.data());
     int level_pixels = 0, moved_when_free = 0, others_moved = 0;
     for (size_t i = 0; i < state.size(); ++i) {
-        const bool is_level = flags[static_cast<size_t>(std::lround(state[i].y)) * level.width + std::lround(state[i].x)] != 0;
-        if (is_level) {
+        if (flags[atlasIndexOf(level, state[i])]) {
             ++level_pixels;
             ASSERT_EQ(held[i].v, state[i].v) << i % kWidth << "," << i / kWidth;
             moved_when_free += std::abs(free[i].v - state[i].v) > 0.01f;
