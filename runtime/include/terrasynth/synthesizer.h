@@ -136,11 +136,10 @@ struct SynthesisParams {
     // weighted most. The paper's V, carried smoothly through a patch, tilts what the patch copies
     // (flat valley floors, lakes and fjords gain a few degrees of slope) and leaves the height step
     // between two patches' sources as a seam; relaxed, flats stay flat across patches and steep
-    // ground keeps its own relief. Pixels under point or curve constraints, frozen pixels,
-    // drainage channels from the level above and pixels copying level ground (which the
-    // correction has already settled level) are not moved. Bounded reach: 4 to 8 pixels of each
-    // level, added to its margin (windows stay bit-identical to larger windows); it runs on the
-    // host and adds about a tenth to the synthesis time on CPUs (docs/realism.md, "Offset
+    // ground keeps its own relief. Pixels under point or curve constraints, frozen pixels and
+    // drainage channels from the level above are not moved. Bounded reach: 4 to 8 pixels of
+    // each level, added to its margin (windows stay bit-identical to larger windows); it runs on
+    // the host and adds about a tenth to the synthesis time on CPUs (docs/realism.md, "Offset
     // relaxation"; docs/benchmarks.md). Off by default: it makes
     // close-ups harder to tell from the exemplar on most exemplars, but at 512^2 it moves
     // orom_andes-chile's slopes and orom_appalachians' closed depressions out of the realism

@@ -13,8 +13,7 @@
 // not count: DEMs stored in whole metres (wn_big_butte) are staircases of level terraces, and
 // letting each terrace sink to the one below flattened the whole staircase into one closed plain.
 // The drainage breach does not carve the level ground its pit lies in (drainage_breach.h): the path
-// still cuts the rim, so the flat drains over it as the exemplar's lakes do, and the offset
-// relaxation leaves it where the correction settled it (offset_relaxation.h).
+// still cuts the rim, so the flat drains over it as the exemplar's lakes do.
 //
 // "Level" is a source whose 8 neighbours in the atlas are all within the tolerance of it: a slope
 // under kLevelGroundSlopeDegrees at the database's finest spacing, at every level. Water is level

@@ -150,13 +150,12 @@ void relaxOffsets(const DatabaseLevel& db, const LevelRegion& region, double spa
     const int h = region.height;
     const size_t pixels = region.pixels();
     if (iterations <= 0 || pixels == 0) return;
-    // Frozen pixels take their recorded relaxed state; they, constrained pixels, those carrying a
-    // drainage ceiling and those copying level ground keep their V.
+    // Frozen pixels take their recorded relaxed state; they, constrained pixels and those carrying a
+    // drainage ceiling keep their V.
     std::vector<uint8_t> fixed;
     holdFrozenAndConstrained(db, inputs.coherence, inputs.relaxed, inputs.blend, pixels, state, fixed);
-    const uint8_t* level = inputs.level_ground ? inputs.level_ground->data() : nullptr;
     for (size_t i = 0; i < pixels; ++i)
-        if (std::isfinite(state[i].ceiling) || (level && level[atlasIndex(db, state[i])])) fixed[i] = 1;
+        if (std::isfinite(state[i].ceiling)) fixed[i] = 1;
     const float gentle = static_cast<float>(std::tan(kRelaxFlatSlopeDegrees * M_PI / 180.0) * spacing_m);
     std::vector<float> relaxed(pixels);
     const int bands = (h + kBandRows - 1) / kBandRows;

@@ -24,11 +24,8 @@
 //
 // Fixed (never moved, but still asked by their neighbours): pixels under a point or curve constraint
 // (blend > 0), pixels carrying a drainage ceiling from the level above (moving them would undo or
-// overshoot the breach's channel; left free they made staircases against the clamp), pixels copying
-// level ground (level_ground.h: the correction has settled them at their lowest level neighbour, and
-// their slope-free neighbours pulled the plateau's edges up again; held, orom_norway keeps 34% of
-// the pixels it copies from flat ground flat, 18% when moved), and frozen pixels (s5.3), which take
-// their recorded relaxed state first.
+// overshoot the breach's channel; left free they made staircases against the clamp), and frozen
+// pixels (s5.3), which take their recorded relaxed state first.
 #pragma once
 
 #include <cstdint>
@@ -57,7 +54,6 @@ struct RelaxationInputs {
     const std::vector<uint8_t>* coherence = nullptr;  // W codes per region pixel; empty: none frozen
     const PassHistory* relaxed = nullptr;             // previous synthesis after relaxing; may be empty
     const std::vector<float>* blend = nullptr;        // constraint sums, 4 per region pixel; may be empty
-    const std::vector<uint8_t>* level_ground = nullptr;  // levelGroundFlags per atlas pixel; may be null
 };
 
 // Relaxes V of the `region` pixels of `state` (row-major, region.pixels() entries) at a level with

@@ -191,7 +191,7 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
             // relaxed state.
             const PassHistory relaxed = previousPass(params.previous.get(), level, recorded, region);
             Status s = steps.relax(level, region, relaxationIterations(level),
-                                   {&coherence, &relaxed, &level_constraints.blend, &steps.levelGround(level)});
+                                   {&coherence, &relaxed, &level_constraints.blend});
             if (s && history) s = steps.recordPass(level, region, history->levels[level].passes[recorded]);
             if (!s) return s;
             ++recorded;
