@@ -68,6 +68,16 @@ struct SidecarParts {
     }
 };
 
+// A session on the reference backend; `warnings` collects what it warns about.
+std::unique_ptr<EditSession> open(const std::string& path, std::vector<std::string>* warnings = nullptr) {
+    EditSessionOptions o;
+    o.synthesizer.backend = SynthesisBackend::Reference;
+    if (warnings) o.on_warning = [warnings](const std::string& w) { warnings->push_back(w); };
+    auto s = EditSession::open(path, o);
+    EXPECT_TRUE(s) << s.message();
+    return s ? std::move(s.value()) : nullptr;
+}
+
 class EditedHeightsSidecar : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -98,15 +108,6 @@ protected:
 
     std::string project() const { return dir_ + "/proj.tsyn"; }
     std::string sidecarPath() const { return dir_ + "/proj.heights"; }
-
-    std::unique_ptr<EditSession> open(const std::string& path, std::vector<std::string>* warnings = nullptr) {
-        EditSessionOptions o;
-        o.synthesizer.backend = SynthesisBackend::Reference;
-        if (warnings) o.on_warning = [warnings](const std::string& w) { warnings->push_back(w); };
-        auto s = EditSession::open(path, o);
-        EXPECT_TRUE(s) << s.message();
-        return s ? std::move(s.value()) : nullptr;
-    }
 
     // `timeout`: a reader that blocks (a named pipe) fails the test instead of hanging it.
     test::CliRun synth(const std::string& project, const std::string& out) {
@@ -235,11 +236,9 @@ TEST(EditedHeightsSidecarLevels, SavingOverAPrebuiltDatabaseRecordsItsLevels) {
     ASSERT_EQ(built.exit_code, 0) << built.out;
     const json start = {{"format", "terrasynth-project"}, {"version", 1}, {"database", dir + "/three.tsdb"}, {"size", {48, 48}}};
     writeAll(dir + "/three.tsyn", start.dump(1));
-    EditSessionOptions o;
-    o.synthesizer.backend = SynthesisBackend::Reference;
-    auto session = EditSession::open(dir + "/three.tsyn", o);
-    ASSERT_TRUE(session) << session.message();
-    ASSERT_TRUE(session.value()->save(dir + "/three_saved.tsyn"));
+    auto session = open(dir + "/three.tsyn");
+    ASSERT_TRUE(session);
+    ASSERT_TRUE(session->save(dir + "/three_saved.tsyn"));
     EXPECT_EQ(json::parse(test::readFile(dir + "/three_saved.tsyn"))["database_levels"], 2);
 }
 
