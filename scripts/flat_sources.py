@@ -10,6 +10,12 @@ each output pixel's source in the exemplar and reports
   * grad V inside patches: the median slope, in degrees, of the offset V = output - E(source) at flat
     sources two pixels or more from any incoherent link (a neighbour whose source is not the
     neighbouring exemplar pixel): the tilt V gives the interior of coherent patches.
+  * level steps: of the pairs of 8-neighbours that both copy level ground of the same height (the
+    synthesizer's rule, runtime/src/synth/level_ground.h: all 8 source neighbours within
+    tan 0.5 deg x spacing), the share whose output heights differ by over 10 m: one connected
+    water surface should come out at one height;
+  * spikes: the share of pixels above or below all four edge neighbours by over 2 m, output against
+    exemplar (a checkered step reads as a line of spikes).
 Slopes are the realism instrument's (../shared/realism/realism.py, Zevenbergen & Thorne).
 
 usage:
@@ -49,6 +55,54 @@ def incoherent_links(sx, sy):
     return out
 
 
+LEVEL_DEG = 0.5
+STEP_M = 10.0
+SPIKE_M = 2.0
+
+
+def neighbours(a):
+    """(dy, dx, a shifted so that [y, x] holds a[y + dy, x + dx]) for the 8 neighbours, edges cut."""
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            if dx or dy:
+                yield dy, dx, np.roll(a, (-dy, -dx), (0, 1))
+
+
+def level_flags(E, h):
+    tol = math.tan(math.radians(LEVEL_DEG)) * h
+    spread = np.zeros(E.shape)
+    for _, _, n in neighbours(E):
+        spread = np.maximum(spread, np.abs(n - E))
+    level = spread <= tol
+    level[0, :] = level[-1, :] = level[:, 0] = level[:, -1] = False
+    return level, tol
+
+
+def spike_share(z):
+    c = z[1:-1, 1:-1]
+    n = [z[:-2, 1:-1], z[2:, 1:-1], z[1:-1, :-2], z[1:-1, 2:]]
+    up = np.all([c - x > SPIKE_M for x in n], axis=0)
+    down = np.all([x - c > SPIKE_M for x in n], axis=0)
+    return float((up | down).mean())
+
+
+def level_steps(E, h, z, sx, sy):
+    level, tol = level_flags(E, h)
+    lev = level[sy, sx]
+    own = E[sy, sx]
+    pairs = steps = 0
+    for dy, dx, n_lev in neighbours(lev):
+        if (dy, dx) <= (0, 0):
+            continue  # each unordered pair once
+        n_own = np.roll(own, (-dy, -dx), (0, 1))
+        n_z = np.roll(z, (-dy, -dx), (0, 1))
+        both = lev & n_lev & (np.abs(n_own - own) <= tol)
+        both[-1, :] = both[0, :] = both[:, -1] = both[:, 0] = False
+        pairs += int(both.sum())
+        steps += int((both & (np.abs(n_z - z) > STEP_M)).sum())
+    return steps / pairs if pairs else float('nan')
+
+
 def survey(exemplar_png, out_f32, src_png):
     exemplar = realism.load(exemplar_png)[0]
     E, h = exemplar.z, exemplar.dx
@@ -69,7 +123,9 @@ def survey(exemplar_png, out_f32, src_png):
     return {'exemplar_flat': float(np.nanmean(g_exemplar < flat)),
             'flat_sources': float(from_flat.mean()),
             'kept_flat': float(np.nanmean(g_out[from_flat] < flat)) if from_flat.any() else float('nan'),
-            'grad_v_inside_deg': float(np.degrees(np.arctan(np.nanmedian(g_offset[inside])))) if inside.any() else float('nan')}
+            'grad_v_inside_deg': float(np.degrees(np.arctan(np.nanmedian(g_offset[inside])))) if inside.any() else float('nan'),
+            'level_steps': level_steps(E, h, z, sx, sy),
+            'spikes': spike_share(z), 'exemplar_spikes': spike_share(E)}
 
 
 def main():
@@ -82,7 +138,8 @@ def main():
     names = sorted(n[:-4] for n in os.listdir(a.exemplars) if n.endswith('.png'))
     if a.only:
         names = [n for n in names if n in a.only.split(',')]
-    print('%-24s %9s %9s %9s %12s' % ('exemplar', 'ex flat', 'flat src', 'kept flat', 'grad V deg'))
+    print('%-24s %9s %9s %9s %12s %11s %14s' % ('exemplar', 'ex flat', 'flat src', 'kept flat', 'grad V deg',
+                                                 'lvl steps', 'spikes out/ex'))
     for name in names:
         out = os.path.join(a.work, f'{name}_s{a.seed}.f32')
         src = os.path.join(a.work, f'{name}_s{a.seed}_src.png')
@@ -90,8 +147,9 @@ def main():
             print(f'{name}: no {out} with its sources map; skipped', file=sys.stderr)
             continue
         r = survey(os.path.join(a.exemplars, name + '.png'), out, src)
-        print('%-24s %8.2f%% %8.2f%% %8.1f%% %12.2f' % (name, 100 * r['exemplar_flat'], 100 * r['flat_sources'],
-                                                      100 * r['kept_flat'], r['grad_v_inside_deg']))
+        print('%-24s %8.2f%% %8.2f%% %8.1f%% %12.2f %10.1f%% %6.2f/%.2f%%' % (
+            name, 100 * r['exemplar_flat'], 100 * r['flat_sources'], 100 * r['kept_flat'], r['grad_v_inside_deg'],
+            100 * r['level_steps'], 100 * r['spikes'], 100 * r['exemplar_spikes']))
 
 
 if __name__ == '__main__':
