@@ -23,9 +23,7 @@ import sys
 import numpy as np
 from scipy import ndimage
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHARED = os.path.join(os.path.dirname(ROOT), 'shared')
-sys.path.insert(0, os.path.join(SHARED, 'realism'))
+import survey_outputs  # puts ../shared/realism on the path
 import realism  # noqa: E402
 
 RAISED_M = 0.01
@@ -48,22 +46,16 @@ def basins(z):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument('--work', required=True)
-    ap.add_argument('--exemplars', default=os.path.join(SHARED, 'exemplars'))
-    ap.add_argument('--seed', type=int, default=3)
-    ap.add_argument('--only', default='')
+    survey_outputs.add_arguments(ap)
     a = ap.parse_args()
-    names = sorted(n[:-4] for n in os.listdir(a.exemplars) if n.endswith('.png'))
-    if a.only:
-        names = [n for n in names if n in a.only.split(',')]
     print('%-24s %9s %9s %12s %9s' % ('exemplar', 'closed', 'deep', 'ex closed', 'ex deep'))
-    for name in names:
-        out = os.path.join(a.work, f'{name}_s{a.seed}.f32')
+    for name in survey_outputs.exemplar_names(a):
+        out = survey_outputs.synthesis_path(a, name)
         if not os.path.exists(out):
             print(f'{name}: no {out}; skipped', file=sys.stderr)
             continue
         s = basins(realism.load(out)[0].z)  # its sidecar gives the size and spacing
-        e = basins(realism.load(os.path.join(a.exemplars, name + '.png'))[0].z)
+        e = basins(realism.load(survey_outputs.exemplar_path(a, name))[0].z)
         print('%-24s %8.2f%% %8.2f%% %11.2f%% %8.2f%%' % (name, 100 * s[0], 100 * s[1], 100 * e[0], 100 * e[1]))
 
 

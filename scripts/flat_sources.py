@@ -30,9 +30,7 @@ import sys
 import numpy as np
 from scipy import ndimage
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHARED = os.path.join(os.path.dirname(ROOT), 'shared')
-sys.path.insert(0, os.path.join(SHARED, 'realism'))
+import survey_outputs  # puts ../shared/realism on the path
 import discriminator  # noqa: E402  (read_png16: PIL truncates 16-bit RGB)
 import realism  # noqa: E402
 
@@ -45,27 +43,25 @@ def slope_tan(z, h):
     return np.hypot(p, q)
 
 
-def incoherent_links(sx, sy):
-    """1 where some 8-neighbour's source is not the exemplar pixel beside this one's (edges wrap: np.roll)."""
-    out = np.zeros(sx.shape, bool)
+def neighbours(a):
+    """(dy, dx, a shifted so that [y, x] holds a[y + dy, x + dx]) for the 8 neighbours; edges wrap (np.roll)."""
     for dy in (-1, 0, 1):
         for dx in (-1, 0, 1):
             if dx or dy:
-                out |= (np.roll(sx, (-dy, -dx), (0, 1)) - sx != dx) | (np.roll(sy, (-dy, -dx), (0, 1)) - sy != dy)
+                yield dy, dx, np.roll(a, (-dy, -dx), (0, 1))
+
+
+def incoherent_links(sx, sy):
+    """1 where some 8-neighbour's source is not the exemplar pixel beside this one's (edges wrap: np.roll)."""
+    out = np.zeros(sx.shape, bool)
+    for (dy, dx, nx), (_, _, ny) in zip(neighbours(sx), neighbours(sy)):
+        out |= (nx - sx != dx) | (ny - sy != dy)
     return out
 
 
 LEVEL_DEG = 0.5
 STEP_M = 10.0
 SPIKE_M = 2.0
-
-
-def neighbours(a):
-    """(dy, dx, a shifted so that [y, x] holds a[y + dy, x + dx]) for the 8 neighbours, edges cut."""
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            if dx or dy:
-                yield dy, dx, np.roll(a, (-dy, -dx), (0, 1))
 
 
 def level_flags(E, h):
@@ -130,23 +126,17 @@ def survey(exemplar_png, out_f32, src_png):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument('--work', required=True)
-    ap.add_argument('--exemplars', default=os.path.join(SHARED, 'exemplars'))
-    ap.add_argument('--seed', type=int, default=3)
-    ap.add_argument('--only', default='')
+    survey_outputs.add_arguments(ap)
     a = ap.parse_args()
-    names = sorted(n[:-4] for n in os.listdir(a.exemplars) if n.endswith('.png'))
-    if a.only:
-        names = [n for n in names if n in a.only.split(',')]
     print('%-24s %9s %9s %9s %12s %11s %14s' % ('exemplar', 'ex flat', 'flat src', 'kept flat', 'grad V deg',
                                                  'lvl steps', 'spikes out/ex'))
-    for name in names:
-        out = os.path.join(a.work, f'{name}_s{a.seed}.f32')
-        src = os.path.join(a.work, f'{name}_s{a.seed}_src.png')
+    for name in survey_outputs.exemplar_names(a):
+        out = survey_outputs.synthesis_path(a, name)
+        src = survey_outputs.synthesis_path(a, name, '_src.png')
         if not (os.path.exists(out) and os.path.exists(src)):
             print(f'{name}: no {out} with its sources map; skipped', file=sys.stderr)
             continue
-        r = survey(os.path.join(a.exemplars, name + '.png'), out, src)
+        r = survey(survey_outputs.exemplar_path(a, name), out, src)
         print('%-24s %8.2f%% %8.2f%% %8.1f%% %12.2f %10.1f%% %6.2f/%.2f%%' % (
             name, 100 * r['exemplar_flat'], 100 * r['flat_sources'], 100 * r['kept_flat'], r['grad_v_inside_deg'],
             100 * r['level_steps'], 100 * r['spikes'], 100 * r['exemplar_spikes']))
