@@ -87,11 +87,9 @@ def level_steps(E, h, z, sx, sy):
     lev = level[sy, sx]
     own = E[sy, sx]
     pairs = steps = 0
-    for dy, dx, n_lev in neighbours(lev):
+    for (dy, dx, n_lev), (_, _, n_own), (_, _, n_z) in zip(neighbours(lev), neighbours(own), neighbours(z)):
         if (dy, dx) <= (0, 0):
             continue  # each unordered pair once
-        n_own = np.roll(own, (-dy, -dx), (0, 1))
-        n_z = np.roll(z, (-dy, -dx), (0, 1))
         both = lev & n_lev & (np.abs(n_own - own) <= tol)
         both[-1, :] = both[0, :] = both[:, -1] = both[:, 0] = False
         pairs += int(both.sum())
