@@ -175,8 +175,11 @@ kernel void upsample_jitter(global const float4* parent, Region parent_region, g
 // diagonals are fetched first; their modes 1..3 alone bound the cost from below (the mode-0 term
 // is never negative), so a candidate that cannot beat `best` skips the second cache line. The
 // winner is the same as with the full evaluation (the reference does not bother).
+// With median_offset (the finest levels, synth::kMedianOffsetLevels) h is the median of the four
+// mode-0 gaps, the mean of the middle two, in place of their mean: one diagonal across a patch seam
+// does not drag the height of a pixel whose other three agree. Plain selects, no sort.
 TS_INLINE float candidate_cost(global const ushort4* appearance, int width, const float4* ns, int q, float4 weight,
-                               float kappa, float best, float* h_out) {
+                               float kappa, float best, int median_offset, float* h_out) {
     const float4 d0 = ns[0] - convert_float4(appearance[q - 1 - width]);
     const float4 d1 = ns[1] - convert_float4(appearance[q + 1 - width]);
     const float bound = (weight.y * (d0.y * d0.y + d1.y * d1.y) + weight.z * (d0.z * d0.z + d1.z * d1.z) +
@@ -185,7 +188,10 @@ TS_INLINE float candidate_cost(global const ushort4* appearance, int width, cons
     const float4 d2 = ns[2] - convert_float4(appearance[q - 1 + width]);
     const float4 d3 = ns[3] - convert_float4(appearance[q + 1 + width]);
     const float4 d[4] = {d0, d1, d2, d3};
-    const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
+    const float lo_01 = d[0].x < d[1].x ? d[0].x : d[1].x, hi_01 = d[0].x < d[1].x ? d[1].x : d[0].x;
+    const float lo_23 = d[2].x < d[3].x ? d[2].x : d[3].x, hi_23 = d[2].x < d[3].x ? d[3].x : d[2].x;
+    const float h = median_offset ? ((lo_01 > lo_23 ? lo_01 : lo_23) + (hi_01 < hi_23 ? hi_01 : hi_23)) * 0.5f
+                                  : (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
     float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f, c3 = 0.0f;
     for (int k = 0; k < 4; ++k) {
         const float ex = d[k].x - h;
@@ -225,7 +231,8 @@ TS_INLINE float layout_kappa(float kappa, global const uchar* atlas_exemplar, in
 // finest levels (use_types 2) keeps the type of a pixel whose source has one of them, unseeded
 // (constraints/constraint_fields.h); `blend` holds, per region
 // pixel, the point and curve constraints' inverse-distance sums (sum b, sum b*h_t, sum b*d), which
-// pull the chosen height towards the blended target with phi_d.
+// pull the chosen height towards the blended target with phi_d. `median_offset`: the level takes
+// eq. 7's offset h as a median (candidate_cost).
 kernel void correct(global float4* state, Region region, int first_x, int first_y, int inset,
                     global const ushort4* appearance, global const uint2* similar, int width, float4 scale,
                     global const uint* target_sets, int use_types, global const uchar* atlas_type,
@@ -233,7 +240,7 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                     global const float4* blend, int use_blend, global const float* heights, global const uint* prev_index,
                     global const float* prev_v, global const uchar* coherence, int use_prev,
                     global const uchar* atlas_exemplar, global const uchar* layout, int use_layout,
-                    global const uchar* level_ground, float level_tolerance) {
+                    global const uchar* level_ground, float level_tolerance, int median_offset) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width - inset || ly >= region.height - inset) return;
     const int pixel = ly * region.width + lx;
@@ -278,7 +285,7 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         float h;
         best_cost = candidate_cost(appearance, width, ns, q, weight,
                                    layout_kappa(code == COHERENCE_FREE ? 1.0f : COHERENT_WEIGHT, atlas_exemplar, q, own_exemplar),
-                                   INFINITY, &h);
+                                   INFINITY, median_offset, &h);
         best_q = q;
         best_h = h;
         // A coherent pixel that keeps its previous coordinate keeps its previous offset too, so
@@ -309,7 +316,8 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                 if (target != 0u && ((target >> atlas_type[q]) & 1u) == 0u) continue;  // s5.2 rejection
                 float h;
                 const float cost = candidate_cost(appearance, width, ns, q, weight,
-                                                  layout_kappa(j == 0 ? 1.0f : 2.0f, atlas_exemplar, q, own_exemplar), best_cost, &h);
+                                                  layout_kappa(j == 0 ? 1.0f : 2.0f, atlas_exemplar, q, own_exemplar), best_cost,
+                                                  median_offset, &h);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_q = q;
@@ -329,7 +337,8 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                 const int q = (int)type_seeds[range.x + (int)(ts_hash3(gx * SEEDS_PER_TYPE + k, gy, seed_salt ^ (uint)t) % (uint)range.y)];
                 float h;
                 const float cost = candidate_cost(appearance, width, ns, q, weight,
-                                                  layout_kappa(2.0f, atlas_exemplar, q, own_exemplar), best_cost, &h);
+                                                  layout_kappa(2.0f, atlas_exemplar, q, own_exemplar), best_cost,
+                                                  median_offset, &h);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_q = q;
@@ -346,7 +355,7 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         best_q = (int)similar[c].x;
         if (best_q < 0) best_q = c;  // S(p) is interior after upsampling; never read outside the atlas
         float h = 0.0f;
-        candidate_cost(appearance, width, ns, best_q, weight, 1.0f, INFINITY, &h);
+        candidate_cost(appearance, width, ns, best_q, weight, 1.0f, INFINITY, median_offset, &h);
         best_h = h;
     }
     float v = keep_v ? prev_v[pixel] : best_h * scale.x;

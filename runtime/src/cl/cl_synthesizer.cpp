@@ -306,7 +306,8 @@ private:
             d.width)(d.scale)(target_sets_.get())(use_types_)(d.types.get())(
             d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_)(d.heights.get())(prev_index_.get())(
             prev_v_.get())(coherence_.get())(use_prev_)(d.exemplar.get())(layout_.get())(cl_int{level == coarsest_ ? 1 : 0})(
-            d.level_ground.get())(synth::LevelGround::tolerance(*db_));
+            d.level_ground.get())(synth::LevelGround::tolerance(*db_))(
+            cl_int{level < synth::kMedianOffsetLevels ? 1 : 0});
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);
     }

@@ -180,15 +180,20 @@ void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& chil
 
 namespace {
 
-// Eq. 7 for candidate q in quantised units (see the kernel's candidate_cost).
-float candidateCost(const DatabaseLevel& db, const Vec4* ns, int q, const float* weight, float kappa, float* h_out) {
+// Eq. 7 for candidate q in quantised units (see the kernel's candidate_cost); median_offset: h is
+// the median of the four mode-0 gaps (kMedianOffsetLevels), in the kernel's selects.
+float candidateCost(const DatabaseLevel& db, const Vec4* ns, int q, const float* weight, float kappa, bool median_offset,
+                    float* h_out) {
     static const int kDiagonals[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
     Vec4 d[4];
     for (int k = 0; k < 4; ++k) {
         const Vec4 a = fetchAppearance(db, q + kDiagonals[k][0] + kDiagonals[k][1] * db.width);
         d[k] = {ns[k].x - a.x, ns[k].y - a.y, ns[k].z - a.z, ns[k].w - a.w};
     }
-    const float h = (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
+    const float lo_01 = d[0].x < d[1].x ? d[0].x : d[1].x, hi_01 = d[0].x < d[1].x ? d[1].x : d[0].x;
+    const float lo_23 = d[2].x < d[3].x ? d[2].x : d[3].x, hi_23 = d[2].x < d[3].x ? d[3].x : d[2].x;
+    const float h = median_offset ? ((lo_01 > lo_23 ? lo_01 : lo_23) + (hi_01 < hi_23 ? hi_01 : hi_23)) * 0.5f
+                                  : (d[0].x + d[1].x + d[2].x + d[3].x) * 0.25f;
     float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f, c3 = 0.0f;
     for (int k = 0; k < 4; ++k) {
         const float ex = d[k].x - h;
@@ -257,6 +262,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
     const float inv_scale0 = 1.0f / scale[0];
     const float weight[4] = {scale[0] * scale[0], scale[1] * scale[1], scale[2] * scale[2], scale[3] * scale[3]};
     const constraints::LevelConstraints& constraints = context.constraints;
+    const bool median_offset = context.level < kMedianOffsetLevels;
     const int first_x = inset + ((parity_x - region.x - inset) & 1), first_y = inset + ((parity_y - region.y - inset) & 1);
     for (int ly = first_y; ly < region.height - inset; ly += 2) {
         for (int lx = first_x; lx < region.width - inset; lx += 2) {
@@ -299,7 +305,8 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 // (s5.2 rejects every other candidate; without this an edit could never repaint).
                 if (target == 0u || ((target >> db.type[q]) & 1u) != 0u) {
                     float h;
-                    best_cost = candidateCost(db, ns, q, weight, layoutKappa(code == Coherence::Free ? 1.0f : kCoherentWeight, q), &h);
+                    const float kappa = layoutKappa(code == Coherence::Free ? 1.0f : kCoherentWeight, q);
+                    best_cost = candidateCost(db, ns, q, weight, kappa, median_offset, &h);
                     best_q = q;
                     best_h = h;
                     keep_v = code != Coherence::Free;  // coherent pixels keep their offset, so it cannot drift
@@ -321,7 +328,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                         if (q < 0) continue;
                         if (target != 0u && ((target >> db.type[q]) & 1u) == 0u) continue;  // s5.2 rejection
                         float h;
-                        const float cost = candidateCost(db, ns, q, weight, layoutKappa(j == 0 ? 1.0f : 2.0f, q), &h);
+                        const float cost = candidateCost(db, ns, q, weight, layoutKappa(j == 0 ? 1.0f : 2.0f, q), median_offset, &h);
                         if (cost < best_cost) {
                             best_cost = cost;
                             best_q = q;
@@ -341,7 +348,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                         const uint32_t pick = hash3(gx * kSeedsPerType + k, gy, context.seed_salt ^ static_cast<uint32_t>(t));
                         const int q = static_cast<int>(context.seeds.seeds[offset + static_cast<int>(pick % static_cast<uint32_t>(count))]);
                         float h;
-                        const float cost = candidateCost(db, ns, q, weight, layoutKappa(2.0f, q), &h);
+                        const float cost = candidateCost(db, ns, q, weight, layoutKappa(2.0f, q), median_offset, &h);
                         if (cost < best_cost) {
                             best_cost = cost;
                             best_q = q;
@@ -356,7 +363,7 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 // (interior after upsampling; synthesis.cl does the same).
                 const PixelState& s = state[pixel];
                 best_q = static_cast<int>(std::floor(s.y + 0.5f)) * db.width + static_cast<int>(std::floor(s.x + 0.5f));
-                candidateCost(db, ns, best_q, weight, 1.0f, &best_h);
+                candidateCost(db, ns, best_q, weight, 1.0f, median_offset, &best_h);
             }
             float v = best_h * scale[0];
             if (keep_v) v = context.previous.v[pixel];

@@ -57,6 +57,14 @@ void referenceUpsample(const DatabaseLevel& parent_db, const DatabaseLevel& chil
                        const std::vector<PixelState>& parent, const LevelRegion& child_region, float jitter,
                        uint32_t seed, int child_level, std::vector<PixelState>& child);
 
+// The finest levels (0 .. kMedianOffsetLevels - 1) take eq. 7's best offset h as the median of the
+// four diagonal mode-0 gaps, not their mean (the least-squares h of Gain et al. s3): where a pixel's
+// diagonals come from two patches, the mean sets the height between them and the seam shows as a
+// mottle of half-steps at 1:1; the median follows the three that agree. Coarser levels keep the
+// mean (at every level the median let more closed depressions through the drainage breach,
+// docs/realism.md, "Median offset").
+constexpr int kMedianOffsetLevels = 2;
+
 // What a correction subpass needs besides the state: the level, its constraints and seed lists.
 struct CorrectionContext {
     int level = 0;
