@@ -18,7 +18,8 @@
 // not as float4: CPU drivers (PoCL) vectorise a kernel across work-items only without vector types.
 //
 // Host constants, passed as -D so they live in one place (synth/drainage_breach.h):
-// BREACH_EDGE_DROP (kEdgeDrop), BREACH_STEP_COST (kBreachStepCost), DIAGONAL_LENGTH (kBreachDiagonal).
+// BREACH_EDGE_DROP (kEdgeDrop), BREACH_STEP_COST (kBreachStepCost), DIAGONAL_LENGTH (kBreachDiagonal),
+// BREACH_PROFILE_DEPTH (kBreachProfileDepth).
 
 #pragma OPENCL FP_CONTRACT OFF
 
@@ -27,6 +28,9 @@
 #endif
 #ifndef BREACH_STEP_COST
 #define BREACH_STEP_COST 1e-3f
+#endif
+#ifndef BREACH_PROFILE_DEPTH
+#define BREACH_PROFILE_DEPTH 0.875f
 #endif
 #ifndef DIAGONAL_LENGTH
 #define DIAGONAL_LENGTH 1.41421356f
@@ -346,8 +350,8 @@ kernel void breach_search(global const float* z, global const uchar* fixed, int 
         const int end = search_path(z, fixed, use_fixed, w, h, px, py, radius, margin, to_edge, window_min,
                                     serial_base + (uint)p, s);
         if (end < 0) continue;
-        // A straight profile from the pit down to the lower pixel; cells already below it stay. A
-        // path to the window's edge ends below the pit.
+        // A straight profile from the pit down, BREACH_PROFILE_DEPTH of the way to the lower pixel;
+        // cells already below it stay. A path to the window's edge ends below the pit.
         int cells = 0;
         for (int c = end; c != radius * side + radius; ++cells) {
             const int k = s.parent[AT(s, c)];
@@ -356,13 +360,14 @@ kernel void breach_search(global const float* z, global const uchar* fixed, int 
         const int end_pixel = pit + (end / side - radius) * w + (end % side - radius);
         const float top = bottom;
         const float lowest = z[end_pixel] < top ? z[end_pixel] : top - (margin < BREACH_EDGE_DROP ? BREACH_EDGE_DROP : margin);
+        const float drop = (top - lowest) * BREACH_PROFILE_DEPTH;
         const float k_last = (float)cells;
         const uint pit_source = source_pixel(state, pit, width);
         const bool pit_level = use_level_ground && level_ground[pit_source];
         int c = end;
         for (int i = cells; i >= 0; --i) {
             const int g = pit + (c / side - radius) * w + (c % side - radius);
-            const float line = top - (top - lowest) * ((float)i / k_last);
+            const float line = top - drop * ((float)i / k_last);
             const float zg = z[g];
             // The level ground the pit lies in stays level (onPitsLevelGround in drainage_breach.cpp).
             const uint cell_source = source_pixel(state, g, width);
@@ -378,7 +383,7 @@ kernel void breach_search(global const float* z, global const uchar* fixed, int 
                 // (unless g is not carved).
                 const int corner = level ? -1 : diagonal_corner(z, fixed, use_fixed, w, g - dys[k] * w - dxs[k], g);
                 if (corner >= 0) {
-                    const float midway = top - (top - lowest) * (((float)i - 0.5f) / k_last);
+                    const float midway = top - drop * (((float)i - 0.5f) / k_last);
                     const float zc = z[corner];
                     if (atomic_min(&carve[corner], ordered_key((midway < zc ? midway : zc) + 0.0f)) == NO_CARVE)
                         carved[atomic_inc(&counters[2])] = corner;

@@ -95,7 +95,7 @@ TEST(Drainage, ARegionalLowIsCarvedDownToTheCheapestEdgeOfItsWindow) {
     EXPECT_EQ(counts.breached, 1u);
     const float pit = state[static_cast<size_t>(kCentre) * kSide + kCentre].v;
     EXPECT_EQ(pit, 0.0f) << "the pit itself is not lowered";
-    EXPECT_NEAR(minOnWindowEdge(state), pit - kEdgeDrop, 1e-5f) << "the channel ends below the pit";
+    EXPECT_NEAR(minOnWindowEdge(state), pit - kBreachProfileDepth * kEdgeDrop, 1e-5f) << "the channel ends below the pit";
     // The channel leaves westwards (the cheaper side) and descends from the pit to its end.
     const float west = state[static_cast<size_t>(kCentre) * kSide + kCentre - kRadius].v;
     EXPECT_LT(west, pit);
@@ -173,9 +173,11 @@ std::vector<float> rowAfterBreach(bool deep, float depth_margin) {
 
 TEST(Drainage, APitDrainsToAPixelTheDepthMarginBelowWhenOneIsInReach) {
     const std::vector<float> row = rowAfterBreach(true, 2.0f);
-    // The shallow hollow is nearer and cheaper, but only the deep one is 2 m below the pit.
+    // The shallow hollow is nearer and cheaper, but only the deep one is 2 m below the pit. The
+    // profile descends kBreachProfileDepth of the way to it, so the hollow itself stays.
     for (int x = kDeep + 1; x < kPit; ++x)
-        EXPECT_NEAR(row[x], -5.0f * static_cast<float>(kPit - x) / (kPit - kDeep), 1e-5f) << x;
+        EXPECT_NEAR(row[x], -5.0f * kBreachProfileDepth * static_cast<float>(kPit - x) / (kPit - kDeep), 1e-5f) << x;
+    EXPECT_EQ(row[kDeep], -5.0f);
     for (int x = kPit + 1; x < kShallow; ++x) EXPECT_EQ(row[x], 10.0f) << x;
 }
 
@@ -185,7 +187,8 @@ TEST(Drainage, APitOutOfReachOfTheMarginDrainsToTheFirstLowerPixel) {
         // pixel); with margin 0 the first lower pixel is the target anyway.
         const std::vector<float> row = rowAfterBreach(margin == 0.0f, margin);
         for (int x = kPit + 1; x < kShallow; ++x)
-            EXPECT_NEAR(row[x], -0.5f * static_cast<float>(x - kPit) / (kShallow - kPit), 1e-5f) << "margin " << margin << ", " << x;
+            EXPECT_NEAR(row[x], -0.5f * kBreachProfileDepth * static_cast<float>(x - kPit) / (kShallow - kPit), 1e-5f)
+                << "margin " << margin << ", " << x;
         for (int x = kDeep + 1; x < kPit; ++x) EXPECT_EQ(row[x], 10.0f) << "margin " << margin << ", " << x;
         EXPECT_EQ(row[kShallow], -0.5f) << "the hollow has nothing lower within reach and stays";
     }

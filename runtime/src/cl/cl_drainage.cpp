@@ -58,7 +58,8 @@ Status run2d(cl_command_queue queue, cl_kernel kernel, size_t width, size_t heig
 
 std::string drainageDefines() {
     return " -DBREACH_EDGE_DROP=" + exactLiteral(synth::kEdgeDrop) + " -DBREACH_STEP_COST=" +
-           exactLiteral(synth::kBreachStepCost) + " -DDIAGONAL_LENGTH=" + exactLiteral(synth::kBreachDiagonal);
+           exactLiteral(synth::kBreachStepCost) + " -DDIAGONAL_LENGTH=" + exactLiteral(synth::kBreachDiagonal) +
+           " -DBREACH_PROFILE_DEPTH=" + exactLiteral(synth::kBreachProfileDepth);
 }
 
 Status DeviceBreach::initialise(cl_context context, cl_device_id device, cl_program program) {

@@ -414,20 +414,22 @@ BreachCounts breachPits(const DatabaseLevel& db, const LevelRegion& region, int 
                                      !(window_min >= z[y * w + x] && copiedFromBasinExemplar(db, inputs.basin_exemplars, state[y * w + x]));
                 if (!search.find(z, fixed, h, x, y, inputs.depth_margin, to_edge, window_min, path)) continue;
                 ++out.counts.breached;
-                // A straight profile from the pit down to the lower pixel; cells already below it
-                // stay. A path to the window's edge (carve_to_edge) ends below the pit.
+                // A straight profile from the pit down, kBreachProfileDepth of the way to the lower
+                // pixel; cells already below it stay. A path to the window's edge (carve_to_edge)
+                // ends below the pit.
                 const float top = z[path.front()];
                 const float bottom = z[path.back()] < top ? z[path.back()] : top - std::max(inputs.depth_margin, kEdgeDrop);
+                const float drop = (top - bottom) * kBreachProfileDepth;
                 const float k = static_cast<float>(path.size() - 1);
                 for (size_t i = 0; i < path.size(); ++i) {
                     if (onPitsLevelGround(db, inputs, state, path[0], path[i], z[path[i]] - top)) continue;
-                    const float line = top - (top - bottom) * (static_cast<float>(i) / k);
+                    const float line = top - drop * (static_cast<float>(i) / k);
                     // + 0.0f: a carve of -0 is +0, so the lowest carve is one value whatever the order.
                     out.carves.push_back({path[i], std::min(z[path[i]], line) + 0.0f});
                     if (i == 0) continue;
                     const int corner = diagonalCorner(z, fixed, w, path[i - 1], path[i]);
                     if (corner < 0) continue;
-                    const float midway = top - (top - bottom) * ((static_cast<float>(i) - 0.5f) / k);
+                    const float midway = top - drop * ((static_cast<float>(i) - 0.5f) / k);
                     out.carves.push_back({corner, std::min(z[corner], midway) + 0.0f});
                 }
             }

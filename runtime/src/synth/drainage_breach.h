@@ -67,6 +67,12 @@ constexpr float kEdgeDrop = 1.0f;
 // A step's cost: (metres above the pit + kBreachStepCost) times its length, 1 or kBreachDiagonal.
 constexpr float kBreachStepCost = 1e-3f;
 constexpr float kBreachDiagonal = 1.41421356f;
+// The carved profile descends from the pit by this share of the drop to the path's end (the lower
+// pixel, or the edge drop): cells already below the line stay, so the shallower line leaves more of
+// the copied valley floor. With the median offset of the finest levels (kMedianOffsetLevels) full
+// depth cut channels that read as trenches at 1:1; three quarters let orom_norway's channels close
+// again at 512^2 (docs/realism.md, "Drainage").
+constexpr float kBreachProfileDepth = 0.875f;
 // The finest level whose breach carves to the window's edge: the regional lows form at the coarse
 // levels; levels 2-4 is what was measured (docs/realism.md, "Carving to the window's edge").
 constexpr int kBreachToEdgeFromLevel = 2;
@@ -77,10 +83,11 @@ struct DrainageInputs {
     const std::vector<float>* blend = nullptr;        // constraint sums, 4 per region pixel; may be empty
     float depth_margin = 0.0f;                         // breachDepthMargin of the level, metres
     // A pit with no lower pixel within the radius is carved to the cheapest pixel on its search
-    // window's edge, which is lowered below the pit (by depth_margin, at least kEdgeDrop), so the
-    // channel leads out of the basin and the next level's breach may continue it. Such pits are the
-    // regional lows of the initial patches (valleys ending against higher patches) and the large
-    // basins left at 1024^2; synthesis_driver.cpp sets it from level kBreachToEdgeFromLevel up.
+    // window's edge, which is lowered below the pit (by kBreachProfileDepth times depth_margin or
+    // kEdgeDrop, the larger), so the channel leads out of the basin and the next level's breach
+    // may continue it. Such pits are the regional lows of the initial patches (valleys ending
+    // against higher patches) and the large basins left at 1024^2; synthesis_driver.cpp sets it
+    // from level kBreachToEdgeFromLevel up.
     bool carve_to_edge = false;
     // The pixels whose result matters (global, at the level): what the next finer level or the
     // output reads. Only pits within `radius` of it can carve it, so the others are not searched.
