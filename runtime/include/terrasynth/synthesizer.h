@@ -63,6 +63,9 @@ constexpr int kMinCoarsestSide = 40;
 // exemplar position each, wrapped around the exemplar's interior) instead of independent random
 // pixels.
 constexpr int kInitialPatchSize = 24;
+// Median offset (beyond the paper): at the two finest levels the height offset a candidate brings
+// (eq. 7's h) is the median of its four diagonal neighbours' gaps, not their mean, so a pixel whose
+// neighbours come from two patches follows the three that agree instead of settling between them.
 // Level ground (beyond the paper): a pixel whose source is level (its 8 exemplar neighbours within
 // tan 0.5 degrees times the database's spacing of it: lakes, sea, flat floors) goes no higher than
 // its lowest neighbour copied from the same level ground, so copied water settles level instead of
@@ -71,7 +74,8 @@ constexpr int kInitialPatchSize = 24;
 // Drainage (beyond the paper, whose s6 notes that pixel-based synthesis drains
 // unrealistically). Breach: after the correction passes of every level, each closed pit looks for the
 // cheapest path to a lower pixel within breachRadius(level) pixels and the path is carved to a
-// straight descending profile (least-cost breaching, Lindsay 2016), by lowering V; the carved
+// straight profile descending most of the way to that pixel (least-cost breaching, Lindsay 2016;
+// cells already below it stay), by lowering V; the carved
 // heights become a ceiling the next level's correction may not exceed (the channel is re-detailed
 // from the exemplars below it). At levels 2-4 a pit with no lower pixel within the radius (a
 // regional low) is carved to the cheapest pixel on the edge of its search window instead, which
