@@ -143,7 +143,10 @@ TEST(PluginPaging, MergeStaysWithinThePerFrameCap) {
         return ++slow_frames > 5 && slow.node->settled();
     }));
     EXPECT_GT(slow.node->stats().tiles_merged, 10u);
-    EXPECT_EQ(static_cast<uint64_t>(slow_merged_frames), slow.node->stats().tiles_merged);
+    const TerrainStats slow_stats = slow.node->stats();
+    EXPECT_EQ(static_cast<uint64_t>(slow_merged_frames), slow_stats.tiles_merged)
+        << "failures " << slow_stats.build_failures << ", stale " << slow_stats.stale_builds_dropped << ", unchanged "
+        << slow_stats.rebuilds_unchanged << ", swapped " << slow_stats.tiles_swapped << ", evicted " << slow_stats.tiles_evicted;
 }
 
 TEST(PluginPaging, MemoryStaysBoundedOnALongFlight) {

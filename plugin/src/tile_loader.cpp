@@ -40,14 +40,12 @@ void TileLoader::run(const TileKey& key, uint64_t ticket, uint64_t generation, c
     {
         std::lock_guard<std::mutex> lock(mutex_);
         auto it = building_.find(key);
-        if (it == building_.end()) {
-            // Popped just before a re-plan dropped it: still worth finishing, claim the key.
-            building_[key] = {ticket, true};
-        } else if (it->second.ticket != ticket || it->second.started) {
-            return;  // a newer submission of the same tile owns it
-        } else {
-            it->second.started = true;
-        }
+        // Popped just before a re-plan dropped it (no entry), or a newer submission owns the key:
+        // nothing to do. The re-plan queued again whatever is still wanted; claiming the key here
+        // built a tile twice when the newer build had already been merged (its done() erased the
+        // entry) by the time this worker got the lock.
+        if (it == building_.end() || it->second.ticket != ticket || it->second.started) return;
+        it->second.started = true;
     }
     TileBuild build = buildTile(source, key, settings_, parent, &types);
     build.generation = generation;
