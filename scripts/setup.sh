@@ -11,6 +11,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri
   python3-numpy
+  # The realism instrument in ../shared/realism (scripts/realism_survey.py, closeup_sheet.py,
+  # hillshade_pairs.py): its gate needs scipy, its discriminator scikit-learn.
+  python3-scipy python3-sklearn
   slurm-wlm munge
   # Hardening (issue 20): libFuzzer (clang and its runtime, scripts/fuzz.sh), valgrind
   # (scripts/valgrind_databases.sh), PIL for regenerating fuzz seeds (tests/fuzz/make_seeds.py).
