@@ -19,19 +19,10 @@ import numpy as np
 from PIL import Image, ImageDraw
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SHARED = os.path.normpath(os.path.join(HERE, '..', '..', 'shared'))
-if not os.path.isdir(SHARED):
-    SHARED = '/work/shared'
+sys.path.insert(0, HERE)
+from hillshade_pairs import SHARED, hillshade  # the same sun and the same exemplars as the sheets
+
 GAP = 4
-
-
-def hillshade(z, mpp):
-    gy, gx = np.gradient(z.astype(np.float64), mpp)
-    slope = np.arctan(np.hypot(gx, gy))
-    aspect = np.arctan2(-gx, gy)
-    azimuth, altitude = np.radians(315.0), np.radians(45.0)
-    shade = np.sin(altitude) * np.cos(slope) + np.cos(altitude) * np.sin(slope) * np.cos(azimuth - aspect)
-    return np.clip(255 * shade, 0, 255).astype(np.uint8)
 
 
 def central(z, crop):
