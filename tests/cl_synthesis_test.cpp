@@ -96,6 +96,41 @@ TEST(Synthesis, CoarseOutputLevelsAreWindowedToo) {
         for (int x = 0; x < 64; ++x) ASSERT_EQ(part.heights.at(x, y), whole.heights.at(x + 64, y));
 }
 
+TEST(Synthesis, TheFinestLevelsAreUpsampledWithoutJitter) {
+    // With no correction passes a level is its parent upsampled (eq. 1-2): child = 2 * parent +
+    // (x & 1, y & 1), plus eq. 1's jitter. Levels 0-1 take none (synthesis_driver.h,
+    // kUnjitteredLevels), level 2 the default 0.4 px: level 2 must differ from its upsampled
+    // parent, levels 1 and 0 must not. Sources are exemplar pixels of their own level, so the
+    // relation is exact.
+    for (Synthesizer* s : {&openCl(), &reference()}) {
+        const int side = 16;
+        std::vector<SynthesisOutput> levels;  // levels[k]: level k of the same ground
+        for (int level = 0; level <= 3; ++level) {
+            const int scale = 8 >> level;
+            levels.push_back(run(*s, {-2 * scale, 3 * scale, side * scale, side * scale}, 5, level, true, 0));
+        }
+        auto followsParent = [&](int level) {
+            const SynthesisOutput &child = levels[level], &parent = levels[level + 1];
+            const int child_side = side * (8 >> level);
+            size_t exact = 0;
+            for (int y = 0; y < child_side; ++y)
+                for (int x = 0; x < child_side; ++x) {
+                    const size_t c = static_cast<size_t>(y) * child_side + x, p = static_cast<size_t>(y / 2) * (child_side / 2) + x / 2;
+                    exact += child.source_exemplar[c] == parent.source_exemplar[p] &&
+                             child.source_x[c] == 2.0f * parent.source_x[p] + static_cast<float>(x & 1) &&
+                             child.source_y[c] == 2.0f * parent.source_y[p] + static_cast<float>(y & 1);
+                }
+            return static_cast<double>(exact) / (static_cast<double>(child_side) * child_side);
+        };
+        const double level2 = followsParent(2), level1 = followsParent(1), level0 = followsParent(0);
+        std::printf("%s: exactly the upsampled parent at %.1f%% of level 2's pixels, %.1f%% of level 1's, %.1f%% of level 0's\n",
+                    s == &openCl() ? "OpenCL" : "reference", 100 * level2, 100 * level1, 100 * level0);
+        EXPECT_LT(level2, 0.05);
+        EXPECT_GE(level1, 0.99);  // a parent at an exemplar's interior margin may clamp a child
+        EXPECT_GE(level0, 0.99);
+    }
+}
+
 TEST(SynthesisDifferential, OpenClMatchesReferenceWithoutCorrection) {
     // Init + upsample/jitter + resolve only. Tolerances: coordinates within 1e-3 pixel (a few float
     // ulps at atlas coordinates of ~1000) and heights

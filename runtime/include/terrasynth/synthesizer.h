@@ -66,6 +66,9 @@ constexpr int kInitialPatchSize = 24;
 // Median offset (beyond the paper): at the two finest levels the height offset a candidate brings
 // (eq. 7's h) is the median of its four diagonal neighbours' gaps, not their mean, so a pixel whose
 // neighbours come from two patches follows the three that agree instead of settling between them.
+// Unjittered finest levels: levels 0 and 1 are upsampled without eq. 1's jitter (SynthesisParams::
+// jitter applies from level 2 up), so the runs of exemplar coordinates the coarser levels settled
+// reach the output as runs; the correction passes still change what does not fit.
 // Level ground (beyond the paper): a pixel whose source is level (its 8 exemplar neighbours within
 // tan 0.5 degrees times the database's spacing of it: lakes, sea, flat floors) goes no higher than
 // its lowest neighbour copied from the same level ground, so copied water settles level instead of
@@ -99,7 +102,7 @@ int breachRadius(int level);
 
 struct SynthesisParams {
     uint32_t seed = 1;
-    float jitter = 0.4f;        // r of eq. 1, in pixels of each level; 0..1
+    float jitter = 0.4f;        // r of eq. 1, in pixels of each level from 2 up (levels 0-1: none); 0..1
     int correction_passes = 2;  // passes per level, each of 4 subpasses (paper: 2); 0..4
     // Coarsest synthesis level M (paper s4), where synthesis starts from patches of exemplar
     // coordinates. -1 (automatic): the coarsest level at which exemplars holding at least half of

@@ -211,9 +211,11 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
     if (!s) return s;
     for (int level = coarsest; level >= output_level; --level) {
         if (level < coarsest) {
-            // A preview level is not jittered: no correction follows to make the jitter coherent.
+            // A preview level is not jittered: no correction follows to make the jitter coherent;
+            // nor are the finest levels (kUnjitteredLevels).
             const bool preview = level < output_level + params.preview_levels;
-            s = steps.upsample(level, plan.regions[level + 1], plan.regions[level], preview ? 0.0f : params.jitter,
+            const float jitter = preview || level < kUnjitteredLevels ? 0.0f : params.jitter;
+            s = steps.upsample(level, plan.regions[level + 1], plan.regions[level], jitter,
                                params.seed, params.constraints ? &params.constraints->types : nullptr);
             if (!s) return s;
             peak = std::max(peak, plan.regions[level].pixels() + plan.regions[level + 1].pixels());

@@ -21,6 +21,13 @@ int historyPassesAt(const SynthesisParams& params, int level, int coarsest);
 // passes, the offset relaxation's reach (offset_relaxation.h) and the drainage step's reach
 // (drainage_breach.h); planSynthesis's extra_margin.
 std::vector<int> extraMargins(const SynthesisParams& params, int coarsest);
+// The finest levels (0 .. kUnjitteredLevels - 1) are upsampled without eq. 1's jitter, whatever
+// SynthesisParams::jitter says: a child starts at its parent's coordinate, 2x + (0 or 1), so the
+// runs of coordinates the coarser levels settled reach the output as runs, and the correction
+// passes change only what does not fit. Lefebvre & Hoppe 2005, whose jitter step Gain et al.
+// follow, set its amount per level. Jittered at levels 0-1 too, close-ups were told apart from
+// the exemplar a little more often (docs/realism.md, "Unjittered finest levels").
+constexpr int kUnjitteredLevels = 2;
 // Most passes any level records (4 correction passes + the extra ones + relaxation + drainage).
 constexpr int kMaxHistoryPassesPerLevel = 8;
 
