@@ -13,14 +13,16 @@ usage:
       --only orom_highlands,orom_sahara --survey before=/tmp/surv/base --survey after=/tmp/surv/new
 Needs Debian's python3 with numpy and PIL.
 """
-import argparse, json, os, sys
+import argparse, os, sys
 
-import numpy as np
 from PIL import Image, ImageDraw
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from hillshade_pairs import SHARED, hillshade  # the same sun and the same exemplars as the sheets
+
+sys.path.insert(0, os.path.join(SHARED, 'realism'))
+import realism  # its loader: the PNG's sidecar height range, the .f32's size, finite heights
 
 GAP = 4
 
@@ -34,19 +36,15 @@ def central(z, crop):
 
 
 def exemplar_heights(stem):
-    png = os.path.join(SHARED, 'exemplars', stem + '.png')
-    meta = json.load(open(png[:-4] + '.json'))
-    z = np.asarray(Image.open(png), dtype=np.float64)
-    lo, hi = meta['height_min_m'], meta['height_max_m']
-    return lo + z / 65535.0 * (hi - lo), meta['meters_per_pixel'][0]
+    dem = realism.load(os.path.join(SHARED, 'exemplars', stem + '.png'))[0]
+    return dem.z, dem.dx
 
 
 def synthesis_heights(folder, stem, seed):
-    base = os.path.join(folder, f'{stem}_s{seed}')
-    if not os.path.exists(base + '.f32'):
-        sys.exit(f'closeup_sheet: {base}.f32 is missing (run realism_survey.py --keep with seed {seed})')
-    meta = json.load(open(base + '.json'))
-    return np.fromfile(base + '.f32', dtype='<f4').reshape(meta['height'], meta['width'])
+    f32 = os.path.join(folder, f'{stem}_s{seed}.f32')
+    if not os.path.exists(f32):
+        sys.exit(f'closeup_sheet: {f32} is missing (run realism_survey.py --keep with seed {seed})')
+    return realism.load(f32)[0].z  # its .json sidecar gives the size
 
 
 def panel(z, mpp, crop, scale, label):
