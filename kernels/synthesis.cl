@@ -222,6 +222,36 @@ TS_INLINE float layout_kappa(float kappa, global const uchar* atlas_exemplar, in
     return own_exemplar >= 0 && (int)atlas_exemplar[q] != own_exemplar ? kappa * LAYOUT_WEIGHT : kappa;
 }
 
+// Candidate prefetch (TS_CPU_PREFETCH, set by the host for CPU devices; results do not depend on
+// it). A CPU device runs a work-group's items one after another, and each candidate's first
+// appearance load was a cache miss that nothing overlapped: in `perf` of PoCL's `correct` 30% of
+// its samples sat on that one load (docs/benchmarks.md, "Candidate prefetch"). With the prefetch,
+// the sources are gathered first, every candidate's two rows of taps (q - 1 -/+ width) and those of
+// the next work-item (lx + 2: inside a coherent patch its sources are these shifted by two) are
+// touched, and only then are the candidates evaluated, in the same order. GPUs hide the latency
+// with other warps; the gathered list would only take registers there.
+#ifdef TS_CPU_PREFETCH
+TS_INLINE void prefetch_candidate(global const ushort4* appearance, int width, int q) {
+    if (q < 0) return;  // no candidate (kNoIdentityCandidate)
+    __builtin_prefetch(appearance + (q - 1 - width));
+    __builtin_prefetch(appearance + (q - 1 + width));
+}
+#endif
+
+// Eq. 7's comparison of one candidate against the best so far; the first of equal costs stays.
+TS_INLINE void consider_candidate(global const ushort4* appearance, int width, const float4* ns, int q, float4 weight,
+                                  float kappa, int median_offset, float* best_cost, int* best_q, float* best_h,
+                                  bool* keep_v) {
+    float h;
+    const float cost = candidate_cost(appearance, width, ns, q, weight, kappa, *best_cost, median_offset, &h);
+    if (cost < *best_cost) {
+        *best_cost = cost;
+        *best_q = q;
+        *best_h = h;
+        *keep_v = false;
+    }
+}
+
 // Corrects the pixels of one parity class (one of the 4 subpasses), in place: a pixel of the class
 // only reads pixels of other classes (and itself), so there are no races. Costs are evaluated in
 // quantised appearance units weighted by scale^2 per mode: the metric distance of eq. 7 without
@@ -240,7 +270,7 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                     global const float4* blend, int use_blend, global const float* heights, global const uint* prev_index,
                     global const float* prev_v, global const uchar* coherence, int use_prev,
                     global const uchar* atlas_exemplar, global const uchar* layout, int use_layout,
-                    global const uchar* level_ground, float level_tolerance, int median_offset) {
+                    global const uchar* level_ground, float level_tolerance, int median_offset, int atlas_pixels) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width - inset || ly >= region.height - inset) return;
     const int pixel = ly * region.width + lx;
@@ -296,6 +326,11 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
     // the same winner (ties keep the first), so repeated sources are skipped.
     int seen[9];
     int seen_count = 0;
+#ifdef TS_CPU_PREFETCH
+    int gathered_q[18];  // two candidates per distinct source, in evaluation order
+    float gathered_kappa[18];
+    int gathered = 0;
+#endif
     for (int ddy = -1; ddy <= 1; ++ddy) {
         for (int ddx = -1; ddx <= 1; ++ddx) {
             const float4 s = state_at(state, region, lx + ddx, ly + ddy);
@@ -310,23 +345,31 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
             // reference_kernels.h), C_2(c) from PatchMatch (s4), one load.
             const uint2 table = similar[c];
             const int candidates[2] = {(int)table.x, (int)table.y};
+#ifdef TS_CPU_PREFETCH
+            const uint2 next = similar[min(c + 2, atlas_pixels - 1)];
+            prefetch_candidate(appearance, width, (int)next.x);
+            prefetch_candidate(appearance, width, (int)next.y);
+#endif
             for (int j = 0; j < 2; ++j) {
                 const int q = candidates[j];
                 if (q < 0) continue;
                 if (target != 0u && ((target >> atlas_type[q]) & 1u) == 0u) continue;  // s5.2 rejection
-                float h;
-                const float cost = candidate_cost(appearance, width, ns, q, weight,
-                                                  layout_kappa(j == 0 ? 1.0f : 2.0f, atlas_exemplar, q, own_exemplar), best_cost,
-                                                  median_offset, &h);
-                if (cost < best_cost) {
-                    best_cost = cost;
-                    best_q = q;
-                    best_h = h;
-                    keep_v = false;
-                }
+                const float kappa = layout_kappa(j == 0 ? 1.0f : 2.0f, atlas_exemplar, q, own_exemplar);
+#ifdef TS_CPU_PREFETCH
+                prefetch_candidate(appearance, width, q);
+                gathered_q[gathered] = q;
+                gathered_kappa[gathered++] = kappa;
+#else
+                consider_candidate(appearance, width, ns, q, weight, kappa, median_offset, &best_cost, &best_q, &best_h, &keep_v);
+#endif
             }
         }
     }
+#ifdef TS_CPU_PREFETCH
+    for (int i = 0; i < gathered; ++i)
+        consider_candidate(appearance, width, ns, gathered_q[i], weight, gathered_kappa[i], median_offset, &best_cost,
+                           &best_q, &best_h, &keep_v);
+#endif
     const int gx = region.x + lx, gy = region.y + ly;
     if (best_q < 0 && use_types != 2) {
         // s5.2 seeding: nine random coordinates of each target type, from the preselected lists.

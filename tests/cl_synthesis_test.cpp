@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include "terrasynth/synthesizer.h"
@@ -245,6 +246,41 @@ TEST(SynthesisDifferential, OpenClMatchesReferenceWithConstraints) {
     auto plain = openCl().synthesize(w, free, 0, false);
     ASSERT_TRUE(plain);
     EXPECT_NE(plain->heights.heights, cl->heights.heights);
+}
+
+// The candidate prefetch (kernels/synthesis.cl, TS_CPU_PREFETCH: on for CPU devices, what a GPU
+// runs without) reorders loads only: with it and without, the same bits, painted types (rejected
+// candidates, seeding) and points included, with the default drainage.
+TEST(Synthesis, CandidatePrefetchChangesNoBit) {
+    auto synthesizerWithPrefetch = [](const char* setting) {
+        ::setenv("TERRASYNTH_CL_PREFETCH", setting, 1);
+        auto s = Synthesizer::create(test::defaultDatabase());
+        ::unsetenv("TERRASYNTH_CL_PREFETCH");
+        EXPECT_TRUE(s) << s.message();
+        return s ? std::move(s.value()) : nullptr;
+    };
+    auto with = synthesizerWithPrefetch("on"), without = synthesizerWithPrefetch("off");
+    ASSERT_TRUE(with && without);
+    auto constraints = std::make_shared<SynthesisConstraints>();
+    constraints->points.push_back({150.0, 80.0, 3500.0f, 30.0f, 24.0f, 200.0f});
+    TypePaint& paint = constraints->types;
+    paint.x = 0, paint.y = 0, paint.width = 256, paint.height = 192;
+    paint.types.assign(256 * 192, TypePaint::kUnpainted);
+    for (int y = 100; y < 160; ++y)
+        for (int x = 20; x < 240; ++x) paint.types[y * 256 + x] = 1;
+    SynthesisParams plain, constrained;
+    plain.seed = constrained.seed = 13;
+    constrained.constraints = constraints;
+    for (const SynthesisParams& p : {plain, constrained}) {
+        const PixelWindow w{-60, 30, 256, 192};
+        auto a = with->synthesize(w, p, 0, true), b = without->synthesize(w, p, 0, true);
+        ASSERT_TRUE(a) << a.message();
+        ASSERT_TRUE(b) << b.message();
+        EXPECT_TRUE(sameBits(a->heights.heights, b->heights.heights));
+        EXPECT_TRUE(sameBits(a->source_x, b->source_x));
+        EXPECT_TRUE(sameBits(a->source_y, b->source_y));
+        EXPECT_EQ(a->source_exemplar, b->source_exemplar);
+    }
 }
 
 TEST(Synthesis, APreviewLevelKeepsWhatIsNotFreeAndUpsamplesTheFreeArea) {
