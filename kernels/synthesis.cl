@@ -231,10 +231,20 @@ TS_INLINE float layout_kappa(float kappa, global const uchar* atlas_exemplar, in
 // touched, and only then are the candidates evaluated, in the same order. GPUs hide the latency
 // with other warps; the gathered list would only take registers there.
 #ifdef TS_CPU_PREFETCH
+// A CPU driver whose compiler is not clang's has no __builtin_prefetch: it keeps the gathering,
+// which alone changes nothing measurable, and the program still builds.
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_prefetch)
+#define TS_PREFETCH(pointer) __builtin_prefetch(pointer)
+#endif
+#endif
+#ifndef TS_PREFETCH
+#define TS_PREFETCH(pointer) ((void)(pointer))
+#endif
 TS_INLINE void prefetch_candidate(global const ushort4* appearance, int width, int q) {
     if (q < 0) return;  // no candidate (kNoIdentityCandidate)
-    __builtin_prefetch(appearance + (q - 1 - width));
-    __builtin_prefetch(appearance + (q - 1 + width));
+    TS_PREFETCH(appearance + (q - 1 - width));
+    TS_PREFETCH(appearance + (q - 1 + width));
 }
 #endif
 
