@@ -177,6 +177,9 @@ bool Session::makeWorld(std::shared_ptr<Terrain> terrain) {
     stats_.device = o_.backend == SynthesisBackend::OpenCL ? "opencl" : "reference";
 
     plugin::PluginOptions po = *plugin::parsePluginOptions(gameTerrainOptions(o_));  // checked before the window
+    // The terrain is read-only here: tiles and the ground cache's blocks (64-quad windows, as the
+    // tiles) are cut from one synthesis of their group (height_source.h).
+    w.source = plugin::tileGroupedSource(std::move(w.source), po.node.tile_size);
     if (!po.max_level_given) po.node.max_level = plugin::clampedMaxLevel(po.node, terrain->database().levelCount());
     w.node = new plugin::TerrainNode(w.source, w.mpp, po.node);
     plugin::TerrainLook look = start_heights_ ? plugin::lookForHeightRange(start_heights_->first, start_heights_->second)

@@ -125,7 +125,10 @@ private:
         // database has the levels it has, whatever the project says.
         if (!opts.max_level_given) opts.node.max_level = clampedMaxLevel(opts.node, shared->database().levelCount());
 
-        HeightSource source = [shared](const PixelWindow& w, int level) { return shared->heights(w, level); };
+        // A project read from a file does not change under the node: tiles share their group's
+        // synthesis (height_source.h).
+        HeightSource source = tileGroupedSource(
+            [shared](const PixelWindow& w, int level) { return shared->heights(w, level); }, opts.node.tile_size);
         osg::ref_ptr<TerrainNode> node = new TerrainNode(source, shared->metersPerPixel(0), opts.node);
         node->setName(osgDB::getSimpleFileName(path));
         if (opts.type_colors) node->setTypeSource(terrainTypeSource(shared));

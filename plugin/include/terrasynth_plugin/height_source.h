@@ -26,4 +26,20 @@ HeightSource mirroredExemplarSource(const Heightfield& exemplar);
 HeightSource editedSource(HeightSource base,
                           std::function<void(const PixelWindow&, int level, Heightfield&)> edit);
 
+// Wraps `base` so that a tile-sized window (each side at least group_side / 8) lying within one
+// aligned group (the global square [gx, gx + 1) * group_side of its level, plus 8 samples on every
+// side) is cut from that group's heights, asked of `base` once: neighbouring tiles then share one
+// synthesis and its margins instead of paying them each (with drainage by breaching a 64^2 tile
+// cost 7.7 times its undrained synthesis). Other windows go to `base` as they are. Exact only for
+// a source that keeps its contract (grid.h: overlapping windows bit-identical) and never changes:
+// a terrain opened read-only, not an edit session's source. The most recent `max_groups` groups
+// are kept (each (group_side + 17)^2 floats); two threads asking for one group wait for one
+// computation. A group that fails leaves the window to `base`. group_side < 8 or max_groups 0:
+// `base` itself. Thread-safe if `base` is.
+HeightSource groupedSource(HeightSource base, int group_side, size_t max_groups);
+
+// groupedSource for tiles of `tile_size` quads: groups of 4 x 4 tiles up to 512 samples a side,
+// 2 x 2 above, as many as 64 MB hold (at least 8); tiles of 1024 quads and more: `base` itself.
+HeightSource tileGroupedSource(HeightSource base, int tile_size);
+
 }  // namespace terrasynth::plugin
