@@ -14,8 +14,6 @@
 namespace terrasynth::game {
 namespace {
 
-int64_t floorDiv(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-
 // A fetch per block takes a few to tens of ms of synthesis; the frame loop must keep its CPU.
 constexpr int kWorkerNice = 5;
 

@@ -31,8 +31,6 @@ constexpr int kGroupSide = 512;
 constexpr int kLargestGroupedTile = 1024;
 constexpr size_t kGroupCacheBytes = size_t{64} << 20;
 
-int64_t floorDiv(int64_t v, int64_t d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
-
 struct GroupKey {
     int level;
     int64_t gx, gy;
@@ -46,8 +44,7 @@ public:
     Result<Heightfield> heights(const PixelWindow& w, int level) {
         // Only windows of a tile's size (or its parent's half: tile_builder.cpp) that fit one group.
         const int64_t gx = floorDiv(w.x + kGroupPad, side_), gy = floorDiv(w.y + kGroupPad, side_);
-        const PixelWindow group{gx * side_ - kGroupPad, gy * side_ - kGroupPad, side_ + 2 * kGroupPad + 1,
-                                side_ + 2 * kGroupPad + 1};
+        const PixelWindow group = growWindow({gx * side_, gy * side_, side_ + 1, side_ + 1}, kGroupPad);
         const bool tile_sized = w.width >= side_ / 8 && w.height >= side_ / 8;
         if (!tile_sized || intersectWindows(w, group) != w) return base_(w, level);
         std::shared_future<Result<Heightfield>> pending;

@@ -146,7 +146,6 @@ void TerrainNode::setTypeSource(TypeSource types) {
 
 std::vector<TileKey> TerrainNode::tilesCovering(const PixelWindow& region, int level) const {
     const int64_t span = static_cast<int64_t>(layout_.tile_size) << level;
-    auto floorDiv = [](int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
     std::vector<TileKey> keys;
     if (region.empty()) return keys;
     for (int64_t ty = floorDiv(region.y, span); ty <= floorDiv(region.y + region.height - 1, span); ++ty)

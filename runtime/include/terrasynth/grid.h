@@ -37,6 +37,9 @@ struct PixelWindow {
     bool operator!=(const PixelWindow& o) const { return !(*this == o); }
 };
 
+// v / d rounded towards minus infinity (d > 0): the cell of a global coordinate, negative ones too.
+inline int64_t floorDiv(int64_t v, int64_t d) { return v >= 0 ? v / d : -((d - 1 - v) / d); }
+
 // The overlap of two windows; empty (width 0) when they do not overlap.
 inline PixelWindow intersectWindows(const PixelWindow& a, const PixelWindow& b) {
     const int64_t x0 = a.x > b.x ? a.x : b.x, y0 = a.y > b.y ? a.y : b.y;

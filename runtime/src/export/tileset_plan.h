@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "terrasynth/grid.h"
 #include "terrasynth/mesh.h"
 #include "terrasynth/tileset_bake.h"
 
 namespace terrasynth::bake_detail {
 
-inline int64_t floorDiv(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 inline int64_t ceilDiv(int64_t a, int64_t b) { return -floorDiv(-a, b); }
 
 // A tile of the grid.h quadtree: LOD `lod` (0 = finest), index (i, j) at pyramid level `lod`.
