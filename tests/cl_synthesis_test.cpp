@@ -45,6 +45,20 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
+// `point`, and type 1 painted over [x0, x1) x [y0, y1) of a width x height painting at the origin
+// (unpainted elsewhere).
+std::shared_ptr<SynthesisConstraints> pointAndPaintedRectangle(const PointConstraint& point, int width, int height,
+                                                              int x0, int x1, int y0, int y1) {
+    auto constraints = std::make_shared<SynthesisConstraints>();
+    constraints->points.push_back(point);
+    TypePaint& paint = constraints->types;
+    paint.x = 0, paint.y = 0, paint.width = width, paint.height = height;
+    paint.types.assign(static_cast<size_t>(width) * height, TypePaint::kUnpainted);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) paint.types[static_cast<size_t>(y) * width + x] = 1;
+    return constraints;
+}
+
 }  // namespace
 
 TEST(Synthesis, SameSeedSameBitsDifferentSeedDifferentTerrain) {
@@ -221,13 +235,7 @@ TEST(Synthesis, MissingOpenClDeviceIsAClearError) {
 
 TEST(SynthesisDifferential, OpenClMatchesReferenceWithConstraints) {
     // Point constraints and type painting go through the same kernels; same tolerance as above.
-    auto constraints = std::make_shared<SynthesisConstraints>();
-    constraints->points.push_back({120.0, 90.0, 4000.0f, 45.0f, 20.0f, 80.0f});
-    TypePaint& paint = constraints->types;
-    paint.x = 0, paint.y = 0, paint.width = 200, paint.height = 160;
-    paint.types.assign(200 * 160, TypePaint::kUnpainted);
-    for (int y = 20; y < 60; ++y)
-        for (int x = 0; x < 200; ++x) paint.types[y * 200 + x] = 1;
+    const auto constraints = pointAndPaintedRectangle({120.0, 90.0, 4000.0f, 45.0f, 20.0f, 80.0f}, 200, 160, 0, 200, 20, 60);
     SynthesisParams p;
     p.seed = 5;
     p.constraints = constraints;
@@ -261,13 +269,7 @@ TEST(Synthesis, CandidatePrefetchChangesNoBit) {
     };
     auto with = synthesizerWithPrefetch("on"), without = synthesizerWithPrefetch("off");
     ASSERT_TRUE(with && without);
-    auto constraints = std::make_shared<SynthesisConstraints>();
-    constraints->points.push_back({150.0, 80.0, 3500.0f, 30.0f, 24.0f, 200.0f});
-    TypePaint& paint = constraints->types;
-    paint.x = 0, paint.y = 0, paint.width = 256, paint.height = 192;
-    paint.types.assign(256 * 192, TypePaint::kUnpainted);
-    for (int y = 100; y < 160; ++y)
-        for (int x = 20; x < 240; ++x) paint.types[y * 256 + x] = 1;
+    const auto constraints = pointAndPaintedRectangle({150.0, 80.0, 3500.0f, 30.0f, 24.0f, 200.0f}, 256, 192, 20, 240, 100, 160);
     SynthesisParams plain, constrained;
     plain.seed = constrained.seed = 13;
     constrained.constraints = constraints;

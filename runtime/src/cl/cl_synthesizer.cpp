@@ -46,15 +46,14 @@ void localSize(size_t out[2]) {
     }
 }
 
-// Whether `correct` prefetches its candidates (kernels/synthesis.cl, TS_CPU_PREFETCH): on CPU devices,
-// where it takes a fifth to a third off a synthesis; TERRASYNTH_CL_PREFETCH=on|off overrides. The
-// same bits either way.
-bool candidatePrefetch(bool cpu_device) {
-    if (const char* env = std::getenv("TERRASYNTH_CL_PREFETCH")) {
-        if (std::string(env) == "on") return true;
-        if (std::string(env) == "off") return false;
-    }
-    return cpu_device;
+// A two-way runtime knob: true when the environment variable `name` is `yes`, false when `no`,
+// else `fallback`.
+bool envSwitch(const char* name, const char* yes, const char* no, bool fallback) {
+    const char* env = std::getenv(name);
+    if (!env) return fallback;
+    if (std::string(env) == yes) return true;
+    if (std::string(env) == no) return false;
+    return fallback;
 }
 
 class OpenClSynthesizer final : public Synthesizer, private synth::SynthesisSteps {
@@ -84,8 +83,11 @@ public:
         cl_device_type type = 0;
         TS_CL_CHECK(clGetDeviceInfo(device_.device, CL_DEVICE_TYPE, sizeof type, &type, nullptr));
         const bool cpu_device = (type & CL_DEVICE_TYPE_CPU) != 0;
+        // Whether `correct` prefetches its candidates (kernels/synthesis.cl, TS_CPU_PREFETCH): on CPU
+        // devices, where it takes a fifth to a third off a synthesis. The same bits either way.
+        const bool prefetch = envSwitch("TERRASYNTH_CL_PREFETCH", "on", "off", cpu_device);
         auto program = cl::buildProgram(context_.get(), device_.device, {"hash.cl", "synthesis.cl", "drainage.cl"},
-                                        defines + (candidatePrefetch(cpu_device) ? " -DTS_CPU_PREFETCH" : ""));
+                                        defines + (prefetch ? " -DTS_CPU_PREFETCH" : ""));
         if (!program) return program.status();
         program_ = std::move(program.value());
         for (auto [handle, name] : {std::pair{&init_cells_, "init_cells"}, std::pair{&init_, "init_level"},
@@ -96,11 +98,7 @@ public:
         }
         Status breach = breach_.initialise(context_.get(), device_.device, program_.get());
         if (!breach) return breach;
-        breach_on_device_ = !cpu_device;
-        if (const char* where = std::getenv("TERRASYNTH_CL_BREACH")) {
-            if (std::string(where) == "device") breach_on_device_ = true;
-            if (std::string(where) == "host") breach_on_device_ = false;
-        }
+        breach_on_device_ = envSwitch("TERRASYNTH_CL_BREACH", "device", "host", !cpu_device);
         localSize(local_);
         auto placeholder = upload(nullptr, 0);
         if (!placeholder) return placeholder.status();
