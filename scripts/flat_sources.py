@@ -15,7 +15,10 @@ each output pixel's source in the exemplar and reports
     tan 0.5 deg x spacing), the share whose output heights differ by over 10 m: one connected
     water surface should come out at one height;
   * spikes: the share of pixels above or below all four edge neighbours by over 2 m, output against
-    exemplar (a checkered step reads as a line of spikes).
+    exemplar (a checkered step reads as a line of spikes);
+  * patch side: how large the coherent patches are, the square root of their area-weighted mean
+    area in pixels (a patch: 4-connected pixels whose sources continue each other's, S - p constant),
+    and the share of the output in patches of at least 32 x 32 pixels' area.
 Slopes are the realism instrument's (../shared/realism/realism.py, Zevenbergen & Thorne).
 
 usage:
@@ -23,12 +26,15 @@ usage:
 Needs Debian's python3 with numpy, scipy, PIL and sklearn (the realism instrument's dependencies).
 """
 import argparse
+import json
 import math
 import os
 import sys
 
 import numpy as np
 from scipy import ndimage
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 
 import survey_outputs  # puts ../shared/realism on the path
 import discriminator  # noqa: E402  (read_png16: PIL truncates 16-bit RGB)
@@ -97,9 +103,26 @@ def level_steps(E, h, z, sx, sy):
     return steps / pairs if pairs else float('nan')
 
 
+def patch_sizes(sx, sy):
+    """(side of the area-weighted mean patch in pixels, share of pixels in patches of >= 1024 pixels)."""
+    H, W = sx.shape
+    index = np.arange(H * W).reshape(H, W)
+    a, b = [], []
+    for dy, dx in ((0, 1), (1, 0)):
+        coherent = (sx[dy:, dx:] - sx[:H - dy, :W - dx] == dx) & (sy[dy:, dx:] - sy[:H - dy, :W - dx] == dy)
+        a.append(index[:H - dy, :W - dx][coherent])
+        b.append(index[dy:, dx:][coherent])
+    a, b = np.concatenate(a), np.concatenate(b)
+    graph = coo_matrix((np.ones(len(a), np.int8), (a, b)), shape=(H * W, H * W))
+    _, labels = connected_components(graph, directed=False)
+    area = np.bincount(labels)
+    return float(math.sqrt((area.astype(float) ** 2).sum() / area.sum())), float(area[area >= 1024].sum() / area.sum())
+
+
 def survey(exemplar_png, out_f32, src_png):
-    exemplar = realism.load(exemplar_png)[0]
-    E, h = exemplar.z, exemplar.dx
+    # Sources are pixels of the exemplar resampled to the database's spacing (the map's sidecar).
+    h = json.load(open(os.path.splitext(src_png)[0] + '.json'))['exemplar_meters_per_pixel']
+    E = realism.resample(realism.load(exemplar_png)[0], h)
     src = discriminator.read_png16(src_png).astype(np.int64)
     if src.shape[2] < 2:
         raise ValueError(f'{src_png}: not a sources map (RGB expected)')
@@ -114,20 +137,21 @@ def survey(exemplar_png, out_f32, src_png):
     g_out = slope_tan(z, h)
     g_offset = slope_tan(z - E[sy, sx], h)
     inside = from_flat & ~ndimage.binary_dilation(incoherent_links(sx, sy), iterations=INTERIOR_PX)
+    side, large = patch_sizes(sx, sy)
     return {'exemplar_flat': float(np.nanmean(g_exemplar < flat)),
             'flat_sources': float(from_flat.mean()),
             'kept_flat': float(np.nanmean(g_out[from_flat] < flat)) if from_flat.any() else float('nan'),
             'grad_v_inside_deg': float(np.degrees(np.arctan(np.nanmedian(g_offset[inside])))) if inside.any() else float('nan'),
             'level_steps': level_steps(E, h, z, sx, sy),
-            'spikes': spike_share(z), 'exemplar_spikes': spike_share(E)}
+            'spikes': spike_share(z), 'exemplar_spikes': spike_share(E), 'patch_side': side, 'in_large_patches': large}
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     survey_outputs.add_arguments(ap)
     a = ap.parse_args()
-    print('%-24s %9s %9s %9s %12s %11s %14s' % ('exemplar', 'ex flat', 'flat src', 'kept flat', 'grad V deg',
-                                                 'lvl steps', 'spikes out/ex'))
+    print('%-24s %9s %9s %9s %12s %11s %14s %11s %8s' % ('exemplar', 'ex flat', 'flat src', 'kept flat', 'grad V deg',
+                                                          'lvl steps', 'spikes out/ex', 'patch side', '>=32^2'))
     for name in survey_outputs.exemplar_names(a):
         out = survey_outputs.synthesis_path(a, name)
         src = survey_outputs.synthesis_path(a, name, '_src.png')
@@ -135,9 +159,10 @@ def main():
             print(f'{name}: no {out} with its sources map; skipped', file=sys.stderr)
             continue
         r = survey(survey_outputs.exemplar_path(a, name), out, src)
-        print('%-24s %8.2f%% %8.2f%% %8.1f%% %12.2f %10.1f%% %6.2f/%.2f%%' % (
+        print('%-24s %8.2f%% %8.2f%% %8.1f%% %12.2f %10.1f%% %6.2f/%.2f%% %8.0f px %7.0f%%' % (
             name, 100 * r['exemplar_flat'], 100 * r['flat_sources'], 100 * r['kept_flat'], r['grad_v_inside_deg'],
-            100 * r['level_steps'], 100 * r['spikes'], 100 * r['exemplar_spikes']))
+            100 * r['level_steps'], 100 * r['spikes'], 100 * r['exemplar_spikes'], r['patch_side'],
+            100 * r['in_large_patches']))
 
 
 if __name__ == '__main__':
