@@ -48,7 +48,7 @@ import scipy.sparse.linalg as sparse_linalg
 import survey_outputs  # puts ../shared/realism on the path
 import discriminator  # noqa: E402
 import realism  # noqa: E402
-from flat_sources import level_flags  # noqa: E402
+from flat_sources import forward_links, level_flags  # noqa: E402
 from realism_survey import LIMITS, REALISM, SHORT, discriminate, run  # noqa: E402
 
 GENTLE_DEG = 5.0          # the offset relaxation's kRelaxFlatSlopeDegrees
@@ -65,14 +65,12 @@ def exemplar_steps(E, sx, sy):
     at = lambda y, x: E[np.clip(y, 0, EH - 1), np.clip(x, 0, EW - 1)]
     index = np.arange(H * W).reshape(H, W)
     ps, qs, ts, levels = [], [], [], []
-    for dy, dx in ((0, 1), (1, 0)):
-        px, py = sx[:H - dy, :W - dx], sy[:H - dy, :W - dx]
-        qx, qy = sx[dy:, dx:], sy[dy:, dx:]
-        coherent = (qx == px + dx) & (qy == py + dy)
+    for dy, dx, p, q, coherent in forward_links(sx, sy):
+        px, py, qx, qy = sx[p], sy[p], sx[q], sy[q]
         across = 0.5 * ((at(py + dy, px + dx) - at(py, px)) + (at(qy, qx) - at(qy - dy, qx - dx)))
         ts.append(np.where(coherent, at(qy, qx) - at(py, px), across).ravel())
-        ps.append(index[:H - dy, :W - dx].ravel())
-        qs.append(index[dy:, dx:].ravel())
+        ps.append(index[p].ravel())
+        qs.append(index[q].ravel())
         levels.append((px, py, qx, qy))
     return np.concatenate(ps), np.concatenate(qs), np.concatenate(ts), levels
 
@@ -188,17 +186,12 @@ def gate(exemplar_png, out, mpp, size):
     return {k: d[k] for k in LIMITS}
 
 
-def exemplar_at(exemplar_png, mpp):
-    dem = realism.load(exemplar_png)[0]
-    return realism.resample(dem, mpp)
-
-
 def one(args, name, seed):
     png = survey_outputs.exemplar_path(args, name)
     if args.command == 'poisson':
         src_png = os.path.join(args.survey, f'{name}_s{seed}_src.png')
         mpp = json.load(open(src_png[:-4] + '.json'))['exemplar_meters_per_pixel']
-        E = exemplar_at(png, mpp)
+        E = realism.resample(realism.load(png)[0], mpp)
         src = discriminator.read_png16(src_png).astype(np.int64)
         sx, sy = src[..., 0], src[..., 1]
         z0 = realism.load(os.path.join(args.survey, f'{name}_s{seed}.f32'))[0].z
@@ -206,7 +199,7 @@ def one(args, name, seed):
     else:
         dem = realism.load(png)[0]
         mpp = max(dem.dx, dem.dy)
-        E = exemplar_at(png, mpp)
+        E = realism.resample(dem, mpp)
         z0, sx, sy = quilt(E, SIZE, args.block, args.overlap, args.tries, np.random.default_rng(seed))
         z = solve_heights(E, mpp, sx, sy, z0, rigid=level_flags(E, mpp)[0])
     out, src = write_synthesis(args.work, name, seed, z, sx, sy, mpp, png)

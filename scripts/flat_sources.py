@@ -103,15 +103,23 @@ def level_steps(E, h, z, sx, sy):
     return steps / pairs if pairs else float('nan')
 
 
+def forward_links(sx, sy):
+    """For the pairs (p, q = p + (dy, dx)) of the two forward 4-neighbour directions: (dy, dx, slices of
+    the p and q pixels for any array of the output's shape, whether q's source continues p's)."""
+    H, W = sx.shape
+    for dy, dx in ((0, 1), (1, 0)):
+        p, q = (slice(0, H - dy), slice(0, W - dx)), (slice(dy, H), slice(dx, W))
+        yield dy, dx, p, q, (sx[q] - sx[p] == dx) & (sy[q] - sy[p] == dy)
+
+
 def patch_sizes(sx, sy):
     """(side of the area-weighted mean patch in pixels, share of pixels in patches of >= 1024 pixels)."""
     H, W = sx.shape
     index = np.arange(H * W).reshape(H, W)
     a, b = [], []
-    for dy, dx in ((0, 1), (1, 0)):
-        coherent = (sx[dy:, dx:] - sx[:H - dy, :W - dx] == dx) & (sy[dy:, dx:] - sy[:H - dy, :W - dx] == dy)
-        a.append(index[:H - dy, :W - dx][coherent])
-        b.append(index[dy:, dx:][coherent])
+    for _, _, p, q, coherent in forward_links(sx, sy):
+        a.append(index[p][coherent])
+        b.append(index[q][coherent])
     a, b = np.concatenate(a), np.concatenate(b)
     graph = coo_matrix((np.ones(len(a), np.int8), (a, b)), shape=(H * W, H * W))
     _, labels = connected_components(graph, directed=False)
