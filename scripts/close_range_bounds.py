@@ -49,7 +49,7 @@ import survey_outputs  # puts ../shared/realism on the path
 import discriminator  # noqa: E402
 import realism  # noqa: E402
 from flat_sources import forward_links, level_flags  # noqa: E402
-from realism_survey import LIMITS, REALISM, SHORT, discriminate, run  # noqa: E402
+from realism_survey import LIMITS, REALISM, SHORT, discriminate, gate_figures, run  # noqa: E402
 
 GENTLE_DEG = 5.0          # the offset relaxation's kRelaxFlatSlopeDegrees
 STIFFNESS = 1e-4          # eps: reach of about 1/sqrt(eps) = 100 px
@@ -59,31 +59,32 @@ SIZE = 1024
 
 # ---------------------------------------------------------------- the solve
 def exemplar_steps(E, sx, sy):
-    """Per 4-neighbour pair (p, q = p + (0, 1) or (1, 0)): flat indices of p and q and the target step t_pq."""
+    """Per 4-neighbour pair (p, q = p + (0, 1) or (1, 0)): flat indices of p and q, the target step t_pq,
+    and per direction the sources (px, py, qx, qy) of its pairs."""
     H, W = sx.shape
     EH, EW = E.shape
     at = lambda y, x: E[np.clip(y, 0, EH - 1), np.clip(x, 0, EW - 1)]
     index = np.arange(H * W).reshape(H, W)
-    ps, qs, ts, levels = [], [], [], []
+    ps, qs, ts, sources = [], [], [], []
     for dy, dx, p, q, coherent in forward_links(sx, sy):
         px, py, qx, qy = sx[p], sy[p], sx[q], sy[q]
         across = 0.5 * ((at(py + dy, px + dx) - at(py, px)) + (at(qy, qx) - at(qy - dy, qx - dx)))
         ts.append(np.where(coherent, at(qy, qx) - at(py, px), across).ravel())
         ps.append(index[p].ravel())
         qs.append(index[q].ravel())
-        levels.append((px, py, qx, qy))
-    return np.concatenate(ps), np.concatenate(qs), np.concatenate(ts), levels
+        sources.append((px, py, qx, qy))
+    return np.concatenate(ps), np.concatenate(qs), np.concatenate(ts), sources
 
 
 def solve_heights(E, h, sx, sy, z0, rigid=None):
     """The screened weighted Poisson of the module doc; `rigid` (level flags of E) weights pairs of level sources."""
-    p, q, t, pairs = exemplar_steps(E, sx, sy)
+    p, q, t, sources = exemplar_steps(E, sx, sy)
     sigma = math.tan(math.radians(GENTLE_DEG)) * h
     w = sigma ** 2 / (t ** 2 + sigma ** 2)
     if rigid is not None:
         EH, EW = E.shape
         lv = lambda y, x: rigid[np.clip(y, 0, EH - 1), np.clip(x, 0, EW - 1)]
-        both = np.concatenate([(lv(py, px) & lv(qy, qx)).ravel() for px, py, qx, qy in pairs])
+        both = np.concatenate([(lv(py, px) & lv(qy, qx)).ravel() for px, py, qx, qy in sources])
         w = np.where(both, RIGID_LEVEL_WEIGHT, w)
     n, m = z0.size, len(p)
     rows = np.r_[np.arange(m), np.arange(m)]
@@ -178,14 +179,6 @@ def write_synthesis(work, name, seed, z, sx, sy, mpp, exemplar_png):
     return base + '.f32', base + '_src.png'
 
 
-def gate(exemplar_png, out, mpp, size):
-    rj = out[:-4] + '_realism.json'
-    run(['/usr/bin/python3', os.path.join(REALISM, 'realism.py'), 'compare', out, exemplar_png,
-         '--size', f'{size}x{size}', '--mpp', str(mpp), '--json', rj])
-    d = json.load(open(rj))['distances']
-    return {k: d[k] for k in LIMITS}
-
-
 def one(args, name, seed):
     png = survey_outputs.exemplar_path(args, name)
     if args.command == 'poisson':
@@ -203,7 +196,7 @@ def one(args, name, seed):
         z0, sx, sy = quilt(E, SIZE, args.block, args.overlap, args.tries, np.random.default_rng(seed))
         z = solve_heights(E, mpp, sx, sy, z0, rigid=level_flags(E, mpp)[0])
     out, src = write_synthesis(args.work, name, seed, z, sx, sy, mpp, png)
-    figures = gate(png, out, mpp, SIZE)
+    figures = gate_figures(args, png, out, mpp)
     return {'exemplar': name, 'seed': seed, 'figures': figures,
             'pass': {k: figures[k] <= LIMITS[k] for k in LIMITS},
             'discriminator': discriminate(args, png, out, src, mpp)}
@@ -267,7 +260,7 @@ def main():
     args = ap.parse_args()
     if args.command == 'poisson' and not args.survey:
         ap.error('poisson needs --survey (the work folder of realism_survey.py --keep)')
-    args.size = SIZE  # what realism_survey.discriminate reads
+    args.size = SIZE  # what realism_survey's gate_figures and discriminate read
     names = survey_outputs.exemplar_names(args)
     seeds = [int(s) for s in args.seeds.split(',')]
     rows = null(args, names) if args.command == 'null' else construct(args, names, seeds)

@@ -68,13 +68,18 @@ def synthesize(args, db, stem, seed):
     return out, src, ms
 
 
-def judge(args, exemplar_png, out, src, mpp):
+def gate_figures(args, exemplar_png, out, mpp):
+    """The realism gate's five distances of OUT (args.size^2 float32) to its exemplar (realism.py compare)."""
     rj = out[:-4] + '_realism.json'
     run(['/usr/bin/python3', os.path.join(REALISM, 'realism.py'), 'compare', out, exemplar_png,
          '--size', f'{args.size}x{args.size}', '--mpp', str(mpp), '--json', rj])
     d = json.load(open(rj))['distances']
+    return {k: d[k] for k in LIMITS}
+
+
+def judge(args, exemplar_png, out, src, mpp):
     usage = json.loads(run([args.stats_bin or args.bin, 'stats', '--sources', src, '--json']))['sources']
-    return {k: d[k] for k in LIMITS}, usage
+    return gate_figures(args, exemplar_png, out, mpp), usage
 
 
 def discriminate(args, exemplar_png, out, src, mpp):
