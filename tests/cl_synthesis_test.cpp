@@ -285,6 +285,33 @@ TEST(Synthesis, CandidatePrefetchChangesNoBit) {
     }
 }
 
+// Huge pages for a CPU device's large buffers (cl::HostMemory: driver-allocated host memory,
+// advised before the database is copied in and before a state is first written) change where the
+// bytes live, not what they are: the same bits with them and without, over a window large enough
+// that its level-0 state buffers (about 1.6 MB per 320^2 region) and the database's atlas buffers
+// pass kHugePageAdviceBytes.
+TEST(Synthesis, HugePagesChangeNoBit) {
+    auto synthesizerWithHugePages = [](const char* setting) {
+        ::setenv("TERRASYNTH_CL_HUGE_PAGES", setting, 1);
+        auto s = Synthesizer::create(test::defaultDatabase());
+        ::unsetenv("TERRASYNTH_CL_HUGE_PAGES");
+        EXPECT_TRUE(s) << s.message();
+        return s ? std::move(s.value()) : nullptr;
+    };
+    auto with = synthesizerWithHugePages("on"), without = synthesizerWithHugePages("off");
+    ASSERT_TRUE(with && without);
+    SynthesisParams p;
+    p.seed = 17;
+    for (const PixelWindow& w : {PixelWindow{-300, 140, 640, 512}, PixelWindow{700, -20, 96, 64}}) {
+        auto a = with->synthesize(w, p, 0, true), b = without->synthesize(w, p, 0, true);
+        ASSERT_TRUE(a) << a.message();
+        ASSERT_TRUE(b) << b.message();
+        EXPECT_TRUE(sameBits(a->heights.heights, b->heights.heights));
+        EXPECT_TRUE(sameBits(a->source_x, b->source_x));
+        EXPECT_EQ(a->source_exemplar, b->source_exemplar);
+    }
+}
+
 TEST(Synthesis, APreviewLevelKeepsWhatIsNotFreeAndUpsamplesTheFreeArea) {
     // SynthesisParams::preview_levels (an editor's drag step): against a previous synthesis of the
     // same window, the finest level keeps every pixel that is not Free bit for bit and leaves the

@@ -1,6 +1,10 @@
 #include "cl/cl_runtime.h"
 
+#include <sys/mman.h>
+
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 
 #include "cl/baked_kernels.h"
 #include "terrasynth/heightfield_io.h"
@@ -106,11 +110,54 @@ Result<ProgramHandle> buildProgram(cl_context context, cl_device_id device, cons
     return program;
 }
 
-Status reserveBuffer(cl_context context, BufferHandle& buffer, size_t& capacity, size_t bytes, const char* what) {
-    if (buffer && capacity >= bytes) return Status::ok();
+namespace {
+
+// Maps the whole buffer (on a CPU device, its own memory), advises its whole 2 MiB pages for
+// transparent huge pages, and copies `data` in when given, so the first touch of each page is
+// after the advice. The advice is a hint: where madvise refuses it, the buffer is as before.
+Status adviseAndFill(cl_command_queue queue, cl_mem buffer, const void* data, size_t bytes, const char* what) {
     cl_int err = CL_SUCCESS;
-    *buffer.out() = clCreateBuffer(context, CL_MEM_READ_WRITE, bytes, nullptr, &err);
-    TS_CL_CHECK_NAMED(err, std::string("clCreateBuffer(") + what + ", " + std::to_string(bytes) + " bytes)");
+    void* mapped = clEnqueueMapBuffer(queue, buffer, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, bytes, 0, nullptr, nullptr,
+                                      &err);
+    TS_CL_CHECK_NAMED(err, std::string("clEnqueueMapBuffer(") + what + ")");
+    constexpr uintptr_t kHugePage = uintptr_t{2} << 20;
+    const uintptr_t begin = (reinterpret_cast<uintptr_t>(mapped) + kHugePage - 1) & ~(kHugePage - 1);
+    const uintptr_t end = (reinterpret_cast<uintptr_t>(mapped) + bytes) & ~(kHugePage - 1);
+    if (end > begin) (void)madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+    if (data) std::memcpy(mapped, data, bytes);
+    TS_CL_CHECK_NAMED(clEnqueueUnmapMemObject(queue, buffer, mapped, 0, nullptr, nullptr),
+                      std::string("clEnqueueUnmapMemObject(") + what + ")");
+    TS_CL_CHECK_NAMED(clFinish(queue), std::string("clFinish(") + what + ")");
+    return Status::ok();
+}
+
+}  // namespace
+
+Result<BufferHandle> createBuffer(cl_context context, const HostMemory& memory, cl_mem_flags access, const void* data,
+                                  size_t bytes, const char* what) {
+    const bool advise = memory.host_queue && bytes >= kHugePageAdviceBytes;
+    cl_mem_flags flags = access;
+    if (advise) flags |= CL_MEM_ALLOC_HOST_PTR;
+    else if (data) flags |= CL_MEM_COPY_HOST_PTR;
+    cl_int err = CL_SUCCESS;
+    BufferHandle buffer(clCreateBuffer(context, flags, bytes, advise ? nullptr : const_cast<void*>(data), &err));
+    if (err != CL_SUCCESS)
+        return Status::error(std::string("OpenCL: clCreateBuffer(") + what + ", " + std::to_string(bytes) +
+                             " bytes) failed: " + errorName(err));
+    if (advise) {
+        Status s = adviseAndFill(memory.host_queue, buffer.get(), data, bytes, what);
+        if (!s) return s;
+    }
+    return buffer;
+}
+
+Status reserveBuffer(cl_context context, BufferHandle& buffer, size_t& capacity, size_t bytes, const char* what,
+                     const HostMemory& memory) {
+    if (buffer && capacity >= bytes) return Status::ok();
+    buffer.reset();  // before the next allocation: the old and the new need not both fit
+    auto created = createBuffer(context, memory, CL_MEM_READ_WRITE, nullptr, bytes, what);
+    if (!created) return created.status();
+    buffer = std::move(created.value());
     capacity = bytes;
     return Status::ok();
 }

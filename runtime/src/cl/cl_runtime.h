@@ -87,9 +87,28 @@ Result<ProgramHandle> buildProgram(cl_context context, cl_device_id device, cons
 // A global work size: `value` rounded up to a multiple of the work-group size (PoCL requires it).
 inline size_t roundUp(size_t value, size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
 
+// Where a buffer's memory is the host's (a CPU device, `host_queue` set), large buffers are
+// allocated by the driver in host memory (CL_MEM_ALLOC_HOST_PTR) and advised for transparent huge
+// pages before anything touches them: a 1024^2 synthesis reads a database atlas of tens of MB at
+// random and writes state buffers of 18 MB, and with 4 KiB pages it spent about a tenth of its time
+// in page faults and missed the TLB on most candidate loads (docs/benchmarks.md, "Huge pages").
+// Where the kernel does not grant huge pages, or for GPU drivers (`host_queue` null), nothing
+// changes. Contents and results are the same either way.
+struct HostMemory {
+    cl_command_queue host_queue = nullptr;  // set for CPU devices only
+};
+
+// Buffers of at least this many bytes are advised (smaller ones share pages with others).
+constexpr size_t kHugePageAdviceBytes = size_t{4} << 20;
+
+// A new read-write buffer of `bytes`, with `data` copied in when not null; a failure names `what`.
+Result<BufferHandle> createBuffer(cl_context context, const HostMemory& memory, cl_mem_flags access, const void* data,
+                                  size_t bytes, const char* what);
+
 // Grows `buffer` (read-write, uninitialised) to at least `bytes`, `capacity` its size in bytes;
 // never shrinks, so windows of one size reuse it. A failure names `what` and the size.
-Status reserveBuffer(cl_context context, BufferHandle& buffer, size_t& capacity, size_t bytes, const char* what);
+Status reserveBuffer(cl_context context, BufferHandle& buffer, size_t& capacity, size_t bytes, const char* what,
+                     const HostMemory& memory = {});
 
 // Sets kernel arguments in order, each checked; the message names the kernel and argument index.
 class ArgSetter {

@@ -99,6 +99,8 @@ public:
         Status breach = breach_.initialise(context_.get(), device_.device, program_.get());
         if (!breach) return breach;
         breach_on_device_ = envSwitch("TERRASYNTH_CL_BREACH", "device", "host", !cpu_device);
+        // Huge pages for the large buffers of a CPU device (cl::HostMemory); `off` is for measuring.
+        if (envSwitch("TERRASYNTH_CL_HUGE_PAGES", "on", "off", cpu_device)) host_memory_.host_queue = queue_.get();
         localSize(local_);
         auto placeholder = upload(nullptr, 0);
         if (!placeholder) return placeholder.status();
@@ -129,13 +131,7 @@ private:
             return BufferHandle(placeholder_.get());
         }
         if (bytes == 0) data = kPlaceholder, bytes = sizeof(kPlaceholder);
-        cl_int err = CL_SUCCESS;
-        BufferHandle buffer(clCreateBuffer(context_.get(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes,
-                                           const_cast<void*>(data), &err));
-        if (err != CL_SUCCESS)
-            return Status::error(std::string("OpenCL: clCreateBuffer(database, ") + std::to_string(bytes) +
-                                 " bytes) failed: " + cl::errorName(err));
-        return buffer;
+        return cl::createBuffer(context_.get(), host_memory_, CL_MEM_READ_ONLY, data, bytes, "database");
     }
 
     Status uploadDatabase() {
@@ -188,7 +184,7 @@ private:
     // Grows a buffer to hold `pixels` float4s (a state's pixels, or one int4 per patch cell); the
     // capacities are in bytes.
     Status reserve(BufferHandle& buffer, size_t& capacity, size_t pixels, const char* what = "state") {
-        return cl::reserveBuffer(context_.get(), buffer, capacity, pixels * sizeof(cl_float4), what);
+        return cl::reserveBuffer(context_.get(), buffer, capacity, pixels * sizeof(cl_float4), what, host_memory_);
     }
 
     Status run(cl_kernel kernel, size_t width, size_t height) {
@@ -451,6 +447,7 @@ private:
     synth::LevelGround level_ground_;
     cl::DeviceBreach breach_;
     bool breach_on_device_ = true;
+    cl::HostMemory host_memory_;  // huge pages for large buffers on a CPU device
     synth::BreachScratch breach_scratch_;  // the host's breach (a CPU device)
     double bytes_per_pixel_ = 0.0;
 };
