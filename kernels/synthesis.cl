@@ -156,12 +156,14 @@ kernel void upsample_jitter(global const float4* parent, Region parent_region, g
     const int gx = child_region.x + lx, gy = child_region.y + ly;
     const int px = floor_div2(gx), py = floor_div2(gy);
     const float4 p = parent[(py - parent_region.y) * parent_region.width + (px - parent_region.x)];
-    const int e = parent_exemplar[(int)floor(p.y) * parent_width + (int)floor(p.x)];
+    const int e = parent_exemplar[floor_nonneg(p.y) * parent_width + floor_nonneg(p.x)];
     const int4 pr = parent_rects[e], cr = child_rects[e];
     float cx = 2.0f * (p.x - (float)pr.x) + (float)(gx - 2 * px);
     float cy = 2.0f * (p.y - (float)pr.y) + (float)(gy - 2 * py);
-    cx = cx + jitter * ts_hash_signed(ts_hash3(gx, gy, salt_x));
-    cy = cy + jitter * ts_hash_signed(ts_hash3(gx, gy, salt_y));
+    if (jitter != 0.0f) {  // unjittered levels: adding 0 * hash would change no bit (cx, cy > 0)
+        cx = cx + jitter * ts_hash_signed(ts_hash3(gx, gy, salt_x));
+        cy = cy + jitter * ts_hash_signed(ts_hash3(gx, gy, salt_y));
+    }
     const float margin = (float)INTERIOR_MARGIN;
     cx = fmin(fmax(cx, margin), (float)(cr.z - 1) - margin);
     cy = fmin(fmax(cy, margin), (float)(cr.w - 1) - margin);
@@ -447,9 +449,9 @@ kernel void resolve(global const float4* state, Region region, Region out, globa
     const int x = get_global_id(0), y = get_global_id(1);
     if (x >= out.width || y >= out.height) return;
     const float4 s = state[(out.y - region.y + y) * region.width + (out.x - region.x + x)];
-    const float fx = floor(s.x), fy = floor(s.y);
-    const float tx = s.x - fx, ty = s.y - fy;
-    const int i = (int)fy * width + (int)fx;
+    const int ix = floor_nonneg(s.x), iy = floor_nonneg(s.y);  // atlas coordinates are never negative
+    const float tx = s.x - (float)ix, ty = s.y - (float)iy;
+    const int i = iy * width + ix;
     const float top = heights[i] + (heights[i + 1] - heights[i]) * tx;
     const float bot = heights[i + width] + (heights[i + width + 1] - heights[i + width]) * tx;
     const int o = y * out.width + x;

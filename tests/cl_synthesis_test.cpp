@@ -285,11 +285,10 @@ TEST(Synthesis, CandidatePrefetchChangesNoBit) {
     }
 }
 
-// Huge pages for a CPU device's large buffers (cl::HostMemory: driver-allocated host memory,
-// advised before the database is copied in and before a state is first written) change where the
-// bytes live, not what they are: the same bits with them and without, over a window large enough
-// that its level-0 state buffers (about 1.6 MB per 320^2 region) and the database's atlas buffers
-// pass kHugePageAdviceBytes.
+// Huge pages for a CPU device's large buffers (cl::HostMemory: 2 MiB pages of the host's, advised
+// before the database is copied in and before a state is first written, as the buffers' storage)
+// change where the bytes live, not what they are: the same bits with them and without, for a
+// window whose level-0 states pass kHugePageAdviceBytes (about 7 MB) and a small one (under it).
 TEST(Synthesis, HugePagesChangeNoBit) {
     auto synthesizerWithHugePages = [](const char* setting) {
         ::setenv("TERRASYNTH_CL_HUGE_PAGES", setting, 1);

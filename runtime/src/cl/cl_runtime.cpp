@@ -112,41 +112,44 @@ Result<ProgramHandle> buildProgram(cl_context context, cl_device_id device, cons
 
 namespace {
 
-// Maps the whole buffer (on a CPU device, its own memory), advises its whole 2 MiB pages for
-// transparent huge pages, and copies `data` in when given, so the first touch of each page is
-// after the advice. The advice is a hint: where madvise refuses it, the buffer is as before.
-Status adviseAndFill(cl_command_queue queue, cl_mem buffer, const void* data, size_t bytes, const char* what) {
-    cl_int err = CL_SUCCESS;
-    void* mapped = clEnqueueMapBuffer(queue, buffer, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, bytes, 0, nullptr, nullptr,
-                                      &err);
-    TS_CL_CHECK_NAMED(err, std::string("clEnqueueMapBuffer(") + what + ")");
-    constexpr uintptr_t kHugePage = uintptr_t{2} << 20;
-    const uintptr_t begin = (reinterpret_cast<uintptr_t>(mapped) + kHugePage - 1) & ~(kHugePage - 1);
-    const uintptr_t end = (reinterpret_cast<uintptr_t>(mapped) + bytes) & ~(kHugePage - 1);
-    if (end > begin) (void)madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-    if (data) std::memcpy(mapped, data, bytes);
-    TS_CL_CHECK_NAMED(clEnqueueUnmapMemObject(queue, buffer, mapped, 0, nullptr, nullptr),
-                      std::string("clEnqueueUnmapMemObject(") + what + ")");
-    TS_CL_CHECK_NAMED(clFinish(queue), std::string("clFinish(") + what + ")");
-    return Status::ok();
-}
+constexpr size_t kHugePage = size_t{2} << 20;
+
+void CL_CALLBACK freeHostMemory(cl_mem, void* memory) { std::free(memory); }
 
 }  // namespace
 
 Result<BufferHandle> createBuffer(cl_context context, const HostMemory& memory, cl_mem_flags access, const void* data,
                                   size_t bytes, const char* what) {
-    const bool advise = memory.host_queue && bytes >= kHugePageAdviceBytes;
-    cl_mem_flags flags = access;
-    if (advise) flags |= CL_MEM_ALLOC_HOST_PTR;
-    else if (data) flags |= CL_MEM_COPY_HOST_PTR;
-    cl_int err = CL_SUCCESS;
-    BufferHandle buffer(clCreateBuffer(context, flags, bytes, advise ? nullptr : const_cast<void*>(data), &err));
-    if (err != CL_SUCCESS)
+    auto failed = [&](cl_int err) {
         return Status::error(std::string("OpenCL: clCreateBuffer(") + what + ", " + std::to_string(bytes) +
                              " bytes) failed: " + errorName(err));
-    if (advise) {
-        Status s = adviseAndFill(memory.host_queue, buffer.get(), data, bytes, what);
-        if (!s) return s;
+    };
+    cl_int err = CL_SUCCESS;
+    if (!memory.huge_pages || bytes < kHugePageAdviceBytes) {
+        BufferHandle buffer(clCreateBuffer(context, access | (data ? CL_MEM_COPY_HOST_PTR : 0), bytes,
+                                           const_cast<void*>(data), &err));
+        if (err != CL_SUCCESS) return failed(err);
+        return buffer;
+    }
+    // Whole 2 MiB pages of our own, advised before anything touches them; the buffer uses them as
+    // its storage (a CPU driver does not copy a CL_MEM_USE_HOST_PTR buffer) and frees them when
+    // the driver releases it. The advice is a hint: where madvise refuses it, nothing changes.
+    const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+    void* host = std::aligned_alloc(kHugePage, rounded);
+    if (!host) return Status::error(std::string("out of memory for ") + what + " (" + std::to_string(bytes) + " bytes)");
+    (void)madvise(host, rounded, MADV_HUGEPAGE);
+    if (data) std::memcpy(host, data, bytes);
+    BufferHandle buffer(clCreateBuffer(context, access | CL_MEM_USE_HOST_PTR, bytes, host, &err));
+    if (err != CL_SUCCESS) {
+        std::free(host);
+        return failed(err);
+    }
+    err = clSetMemObjectDestructorCallback(buffer.get(), freeHostMemory, host);
+    if (err != CL_SUCCESS) {
+        buffer.reset();  // the driver may still hold the pointer until it releases the buffer
+        std::free(host);
+        return Status::error(std::string("OpenCL: clSetMemObjectDestructorCallback(") + what + ") failed: " +
+                             errorName(err));
     }
     return buffer;
 }

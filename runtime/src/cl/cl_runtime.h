@@ -87,21 +87,22 @@ Result<ProgramHandle> buildProgram(cl_context context, cl_device_id device, cons
 // A global work size: `value` rounded up to a multiple of the work-group size (PoCL requires it).
 inline size_t roundUp(size_t value, size_t multiple) { return (value + multiple - 1) / multiple * multiple; }
 
-// Where a buffer's memory is the host's (a CPU device, `host_queue` set), large buffers are
-// allocated by the driver in host memory (CL_MEM_ALLOC_HOST_PTR) and advised for transparent huge
-// pages before anything touches them: a 1024^2 synthesis reads a database atlas of tens of MB at
-// random and writes state buffers of 18 MB, and with 4 KiB pages it spent about a tenth of its time
-// in page faults and missed the TLB on most candidate loads (docs/benchmarks.md, "Huge pages").
-// Where the kernel does not grant huge pages, or for GPU drivers (`host_queue` null), nothing
-// changes. Contents and results are the same either way.
+// Where a buffer's memory is the host's (a CPU device, `huge_pages` set), large buffers live in
+// whole 2 MiB pages of the host's, advised for transparent huge pages before anything touches them
+// (CL_MEM_USE_HOST_PTR, freed when the driver releases the buffer): a 1024^2 synthesis writes
+// state buffers of 18 MB and reads a database atlas of up to hundreds of MB, and with 4 KiB pages
+// a fresh process spent about a fifteenth of its synthesis in page faults (docs/benchmarks.md,
+// "Huge pages"). For GPU drivers buffers are the driver's as before. Contents
+// and results are the same either way.
 struct HostMemory {
-    cl_command_queue host_queue = nullptr;  // set for CPU devices only
+    bool huge_pages = false;  // set for CPU devices only
 };
 
-// Buffers of at least this many bytes are advised (smaller ones share pages with others).
-constexpr size_t kHugePageAdviceBytes = size_t{4} << 20;
+// Buffers of at least this many bytes get huge pages (smaller ones would waste most of one).
+constexpr size_t kHugePageAdviceBytes = size_t{2} << 20;
 
-// A new read-write buffer of `bytes`, with `data` copied in when not null; a failure names `what`.
+// A new buffer of `bytes` (`access`: CL_MEM_READ_ONLY, ...), with `data` copied in when not null; a
+// failure names `what`.
 Result<BufferHandle> createBuffer(cl_context context, const HostMemory& memory, cl_mem_flags access, const void* data,
                                   size_t bytes, const char* what);
 

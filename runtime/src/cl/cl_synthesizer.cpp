@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <tuple>
 
 #include "cl/cl_drainage.h"
 #include "cl/cl_runtime.h"
@@ -100,7 +101,7 @@ public:
         if (!breach) return breach;
         breach_on_device_ = envSwitch("TERRASYNTH_CL_BREACH", "device", "host", !cpu_device);
         // Huge pages for the large buffers of a CPU device (cl::HostMemory); `off` is for measuring.
-        if (envSwitch("TERRASYNTH_CL_HUGE_PAGES", "on", "off", cpu_device)) host_memory_.host_queue = queue_.get();
+        host_memory_.huge_pages = envSwitch("TERRASYNTH_CL_HUGE_PAGES", "on", "off", cpu_device);
         localSize(local_);
         auto placeholder = upload(nullptr, 0);
         if (!placeholder) return placeholder.status();
@@ -392,28 +393,29 @@ private:
     Status resolve(int level, const synth::LevelRegion& region, const synth::LevelRegion& out, SynthesisOutput& output,
                    bool want_sources) override {
         const size_t pixels = out.pixels();
-        cl_int err = CL_SUCCESS;
-        BufferHandle heights(clCreateBuffer(context_.get(), CL_MEM_WRITE_ONLY, pixels * sizeof(float), nullptr, &err));
-        TS_CL_CHECK_NAMED(err, "clCreateBuffer(heights)");
-        BufferHandle sources(clCreateBuffer(context_.get(), CL_MEM_WRITE_ONLY, want_sources ? pixels * 2 * sizeof(float) : 4,
-                                            nullptr, &err));
-        TS_CL_CHECK_NAMED(err, "clCreateBuffer(sources)");
-        BufferHandle exemplars(clCreateBuffer(context_.get(), CL_MEM_WRITE_ONLY, want_sources ? pixels : 4, nullptr, &err));
-        TS_CL_CHECK_NAMED(err, "clCreateBuffer(source exemplars)");
+        // Kept between syntheses like the states (a fresh buffer per call was fresh pages per call).
+        for (auto [buffer, capacity, bytes, what] :
+             {std::tuple{&out_heights_, &out_heights_capacity_, pixels * sizeof(float), "heights"},
+              std::tuple{&out_sources_, &out_sources_capacity_, want_sources ? pixels * 2 * sizeof(float) : 4, "sources"},
+              std::tuple{&out_exemplars_, &out_exemplars_capacity_, want_sources ? pixels : 4, "source exemplars"}}) {
+            Status reserved = cl::reserveBuffer(context_.get(), *buffer, *capacity, bytes, what, host_memory_);
+            if (!reserved) return reserved;
+        }
+        cl_mem heights = out_heights_.get(), sources = out_sources_.get(), exemplars = out_exemplars_.get();
         const DeviceLevel& d = levels_[level];
         ArgSetter args(resolve_.get(), "resolve");
         args(current_.get())(toArg(region))(toArg(out))(d.heights.get())(d.exemplar.get())(d.rects.get())(d.width)(
-            heights.get())(sources.get())(exemplars.get())(cl_int(want_sources ? 1 : 0));
+            heights)(sources)(exemplars)(cl_int(want_sources ? 1 : 0));
         if (!args.status()) return args.status();
         Status s = run(resolve_.get(), out.width, out.height);
         if (!s) return s;
-        TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), heights.get(), CL_FALSE, 0, pixels * sizeof(float),
+        TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), heights, CL_FALSE, 0, pixels * sizeof(float),
                                         output.heights.heights.data(), 0, nullptr, nullptr));
         std::vector<float> interleaved(want_sources ? pixels * 2 : 0);
         if (want_sources) {
-            TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), sources.get(), CL_FALSE, 0, pixels * 2 * sizeof(float),
+            TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), sources, CL_FALSE, 0, pixels * 2 * sizeof(float),
                                             interleaved.data(), 0, nullptr, nullptr));
-            TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), exemplars.get(), CL_FALSE, 0, pixels,
+            TS_CL_CHECK(clEnqueueReadBuffer(queue_.get(), exemplars, CL_FALSE, 0, pixels,
                                             output.source_exemplar.data(), 0, nullptr, nullptr));
         }
         TS_CL_CHECK(clFinish(queue_.get()));
@@ -435,6 +437,8 @@ private:
     BufferHandle layout_;            // synth::shareLayout of the coarsest level's region
     BufferHandle current_, next_;
     BufferHandle cells_;  // init_cells' output (one int4 per patch cell), reused
+    BufferHandle out_heights_, out_sources_, out_exemplars_;  // resolve's outputs, reused
+    size_t out_heights_capacity_ = 0, out_sources_capacity_ = 0, out_exemplars_capacity_ = 0;
     BufferHandle placeholder_;
     BufferHandle blend_, target_sets_, prev_index_, prev_v_, coherence_;
     bool has_coherence_ = false;
