@@ -10,7 +10,7 @@ before it), the first synthesis of a fresh process as a user meets it.
 
 usage:
   scripts/synth_rounds.py --db db.tsdb --size 1024x1024 --rounds 9 \\
-      base=/path/old/terrasynth new=build/bin/terrasynth [name=BINARY[:ENV=VALUE,...] ...]
+      base=/path/old/terrasynth new=build/bin/terrasynth [name=BINARY[:ENV=VALUE;...] ...]
 The first configuration is the one the others are divided by. Prints one line per round, then per
 configuration the median time and the median and range of its per-round ratio, and the load
 average before and after (the machine's load beside the figures).
@@ -27,9 +27,9 @@ import tempfile
 def parse_config(text):
     name, _, rest = text.partition('=')
     binary, _, env_text = rest.partition(':')
-    env = dict(item.split('=', 1) for item in env_text.split(',') if item)
+    env = dict(item.split('=', 1) for item in env_text.split(';') if item)
     if not name or not binary:
-        raise SystemExit(f'synth_rounds: configuration "{text}" is not NAME=BINARY[:ENV=VALUE,...]')
+        raise SystemExit(f'synth_rounds: configuration "{text}" is not NAME=BINARY[:ENV=VALUE;...]')
     return name, binary, env
 
 
