@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "command_registry.h"
-#include "terrasynth_cli/flag_checks.h"
+#include "terrasynth_flags/flag_checks.h"
 #include "terrasynth/gltf_export.h"
 #include "terrasynth/heightfield_io.h"
 #include "terrasynth/terrain.h"
@@ -192,16 +192,16 @@ void addBakeCommand(CLI::App& app) {
     cmd->add_option("--merge", a->merge, "Write FOLDER/tileset.json from the tiles the shards baked");
     cmd->add_option("--region", a->region, "X,Y,W,H level-0 samples (default: the project extent)")
         ->delimiter(',')
-        ->check(FiniteRange(-kMaxRegionNumber, kMaxRegionNumber));
-    cmd->add_option("--tile", a->tile, "Quads per tile side (2..4096)")->check(FiniteRange(2, 4096));
-    cmd->add_option("--levels", a->levels, "Levels of detail: quadtree levels with content (1..16)")->check(FiniteRange(1, 16));
+        ->check(flags::FiniteRange(ranges::kRegionNumber));
+    cmd->add_option("--tile", a->tile, "Quads per tile side (2..4096)")->check(flags::FiniteRange(2, 4096));
+    cmd->add_option("--levels", a->levels, "Levels of detail: quadtree levels with content (1..16)")->check(flags::FiniteRange(1, 16));
     cmd->add_flag("--quantize", a->quantize, "KHR_mesh_quantization: 16-bit positions, 8-bit normals, 16-bit indices");
     cmd->add_option("--tileset", a->tileset, "auto (implicit for deep trees), explicit or implicit");
     cmd->add_option("--heightmaps", a->heightmaps, "Per-leaf heightmaps: png (16-bit + sidecar), f32 or tif");
     cmd->add_flag("--masks", a->masks, "Per-leaf splat masks, one 8-bit PNG per terrain type");
     cmd->add_option("--shard", a->shard, "Bake only shard I of N (I/N); run --merge when all are done");
     cmd->add_flag("--prepare", a->prepare, "Only build the project's database and write the plan (before a sharded bake)");
-    cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)")->check(FiniteRange(0, 1024));
+    cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)")->check(flags::FiniteRange(ranges::kThreads));
     cmd->add_option("--progress", a->progress, "auto (bar on a terminal, else lines), bar, lines or none");
     cmd->callback([a] {
         const Failure f = runBake(*a);

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "command_registry.h"
-#include "terrasynth_cli/flag_checks.h"
+#include "terrasynth_flags/flag_checks.h"
 #include "outputs.h"
 #include "terrasynth/database.h"
 
@@ -65,10 +65,10 @@ void addDbCommand(CLI::App& app) {
     auto* build = db->add_subcommand("build", "Build a database from exemplar files or folders");
     build->add_option("inputs", args->inputs, "Exemplar files (PNG+JSON, F32+JSON, or any GDAL raster: .tif, .hgt, .asc, .vrt) or folders")->required();
     build->add_option("-o,--output", args->output, "Database file to write (.tsdb)")->required();
-    build->add_option("--levels", args->levels, "Coarsest pyramid level L (levels 0..L)")->check(FiniteRange(1, 12));
+    build->add_option("--levels", args->levels, "Coarsest pyramid level L (levels 0..L)")->check(flags::FiniteRange(ranges::kDatabaseLevels));
     build->add_option("--meters-per-pixel", args->meters_per_pixel,
-                      "Common spacing; default: the coarsest exemplar's")->check(FiniteRange(0, 1e5));
-    build->add_option("--threads", args->threads, "Worker threads (0 = all cores)")->check(FiniteRange(0, 1024));
+                      "Common spacing; default: the coarsest exemplar's")->check(flags::FiniteRange(ranges::kDatabaseSpacing));
+    build->add_option("--threads", args->threads, "Worker threads (0 = all cores)")->check(flags::FiniteRange(ranges::kThreads));
     build->add_flag("-q,--quiet", args->quiet, "No progress output");
     setAction(build, [args] { runDbBuild(*args); });
 }

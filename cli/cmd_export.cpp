@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "command_registry.h"
-#include "terrasynth_cli/flag_checks.h"
+#include "terrasynth_flags/flag_checks.h"
 #include "outputs.h"
 #include "terrasynth/engine_heightmap.h"
 #include "terrasynth/file_transaction.h"
@@ -150,8 +150,7 @@ Status runExport(const ExportArgs& a) {
     if (!isGltfPath(a.output)) {
         auto field = input->heights(region, a.level);
         if (!field) return field.status();
-        const double origin_x = region.x * field->meters_per_pixel_x, origin_y = -region.y * field->meters_per_pixel_y;
-        if (Status s = stageHeightmapExport(transaction, a.output, *field, origin_x, origin_y); !s) return s;
+        if (Status s = stageHeightmapExport(transaction, a.output, *field, region); !s) return s;
         if (Status s = transaction.commit(); !s) return s;
         for (const std::string& p : mask_paths) std::printf("wrote %s\n", p.c_str());
         std::printf("wrote %s (%dx%d heights)\n", a.output.c_str(), field->width, field->height);
@@ -194,18 +193,18 @@ void addExportCommand(CLI::App& app) {
         ->required();
     cmd->add_option("--region", a->region, "X,Y,W,H samples of the global grid (default: the project extent)")
         ->delimiter(',')
-        ->check(FiniteRange(-kMaxRegionNumber, kMaxRegionNumber));
-    cmd->add_option("--level", a->level, "Pyramid level (0 = full resolution)")->check(FiniteRange(0, 12));
-    cmd->add_option("--tile", a->tile, "Quads per tile side")->check(FiniteRange(1, 4096));
-    cmd->add_option("--lods", a->lods, "Levels of detail per tile (see --lod-layout)")->check(FiniteRange(1, 8));
+        ->check(flags::FiniteRange(ranges::kRegionNumber));
+    cmd->add_option("--level", a->level, "Pyramid level (0 = full resolution)")->check(flags::FiniteRange(ranges::kOutputLevel));
+    cmd->add_option("--tile", a->tile, "Quads per tile side")->check(flags::FiniteRange(ranges::kGltfTileQuads));
+    cmd->add_option("--lods", a->lods, "Levels of detail per tile (see --lod-layout)")->check(flags::FiniteRange(ranges::kGltfLods));
     cmd->add_option("--lod-method", a->lod_method, "grid (stitched, fast) or simplify (meshoptimizer)");
     cmd->add_option("--lod-layout", a->lod_layout,
                     "files (default: one whole terrain per LOD, out.glb, out_lod1.glb, ...) or msft (one file, MSFT_lod)");
     cmd->add_flag("--quantize", a->quantize, "KHR_mesh_quantization: 16-bit positions, 8-bit normals, 16-bit indices");
     cmd->add_flag("--colors", a->colors, "Vertex colours: hypsometric tint (+ terrain types for projects)");
-    cmd->add_option("--texture", a->texture, "Embed a tint texture of at most N pixels per side")->check(FiniteRange(0, 8192));
+    cmd->add_option("--texture", a->texture, "Embed a tint texture of at most N pixels per side")->check(flags::FiniteRange(ranges::kTextureSize));
     cmd->add_option("--masks", a->masks, "Also write one PNG mask per terrain type: PREFIX<type>.png (projects only)");
-    cmd->add_option("--mask-blur", a->mask_blur, "Blur radius (pixels) for soft splat masks")->check(FiniteRange(0, 64));
+    cmd->add_option("--mask-blur", a->mask_blur, "Blur radius (pixels) for soft splat masks")->check(flags::FiniteRange(ranges::kMaskBlur));
     cmd->add_option("--preset", a->preset,
                     "unreal|unity|godot: a heightmap in the engine's sizes and format (tiled when larger than one "
                     "landscape), splat masks beside it, and <stem>.json + a printed line with the import numbers");

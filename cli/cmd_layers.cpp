@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "command_registry.h"
-#include "terrasynth_cli/flag_checks.h"
+#include "terrasynth_flags/flag_checks.h"
 #include "outputs.h"
 #include "terrasynth/file_transaction.h"
 #include "terrasynth/limits.h"
@@ -99,8 +99,8 @@ void addLayersCommand(CLI::App& app) {
     cmd->add_option("--size", args->size, "Grid W,H for a fractal or blank base")
         ->delimiter(',')
         ->expected(2)
-        ->check(FiniteRange(1, limits::kMaxWindowSide));
-    cmd->add_option("--mpp", args->mpp, "Grid spacing in metres per pixel (with --size)")->check(FiniteRange(1e-6, 1e5));
+        ->check(flags::FiniteRange(1, limits::kMaxWindowSide));
+    cmd->add_option("--mpp", args->mpp, "Grid spacing in metres per pixel (with --size)")->check(flags::FiniteRange(1e-6, 1e5));
     cmd->add_option("-o,--output", args->output, "Write the composed heightmap (.png, .f32, .exr)");
     cmd->add_option("--hillshade", args->hillshade, "Write a hillshade PNG of the composed terrain");
     setAction(cmd, [args] { runLayers(*args); });

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.h"
-#include "terrasynth_cli/flag_checks.h"
+#include "terrasynth_flags/flag_checks.h"
 #include "outputs.h"
 #include "terrasynth/curve_course.h"
 #include "terrasynth/file_transaction.h"
@@ -146,7 +146,7 @@ Status checkSynthOutputs(const SynthArgs& args) {
 
 // All outputs in one transaction: the preview and sources map first, the heightmap and its sidecar
 // last; on any failure every previous file stays as it was. `window` places a GeoTIFF in the local
-// metric frame (x east, y north, metres; the global pixel grid's origin at 0, 0).
+// metric frame (grid.h: x east, y north, metres; the global pixel grid's origin at 0, 0).
 Status writeOutputs(const SynthArgs& args, const Heightfield& heights, const PixelWindow& window,
                     const SynthesisOutput* sources = nullptr, const ExemplarDatabase* db = nullptr) {
     FileTransaction transaction;
@@ -154,8 +154,7 @@ Status writeOutputs(const SynthArgs& args, const Heightfield& heights, const Pix
         if (Status s = stageHillshadePng(transaction, args.preview, heights); !s) return s;
     if (sources)
         if (Status s = stageSourcesMap(transaction, args.sources, *sources, *db, args.level); !s) return s;
-    const double origin_x = window.x * heights.meters_per_pixel_x, origin_y = -window.y * heights.meters_per_pixel_y;
-    if (Status s = stageHeightmapExport(transaction, args.output, heights, origin_x, origin_y); !s) return s;
+    if (Status s = stageHeightmapExport(transaction, args.output, heights, window); !s) return s;
     return transaction.commit();
 }
 
@@ -231,8 +230,8 @@ void addSynthCommand(CLI::App& app) {
     cmd->add_option("-o,--output", args->output, "Heightmap to write: .png (16-bit + sidecar), .f32, .exr, .tif (float32 GeoTIFF, local metric CRS)")->required();
     cmd->add_option("--size", args->size, "WxH in pixels (default: the project's, 1024x1024)");
     cmd->add_option("--origin", args->origin, "X,Y global pixel of the north-west corner (default 0,0)");
-    cmd->add_option("--seed", args->seed, "Random seed (default: the project's)")->check(FiniteRange(0, 4294967295.0));
-    cmd->add_option("--level", args->level, "Pyramid level to output (0 = full resolution)")->check(FiniteRange(0, 12));
+    cmd->add_option("--seed", args->seed, "Random seed (default: the project's)")->check(flags::FiniteRange(ranges::kSeed));
+    cmd->add_option("--level", args->level, "Pyramid level to output (0 = full resolution)")->check(flags::FiniteRange(ranges::kOutputLevel));
     cmd->add_option("--sources", args->sources, "Write the exemplar coordinate map (16-bit RGB PNG)");
     cmd->add_option("--preview", args->preview, "Write a hillshade preview PNG");
     cmd->add_option("--backend", args->backend, "opencl (default) or reference (plain C++)");

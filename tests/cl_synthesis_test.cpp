@@ -367,3 +367,37 @@ TEST(Synthesis, APreviewLevelKeepsWhatIsNotFreeAndUpsamplesTheFreeArea) {
     ASSERT_TRUE(corrected);
     EXPECT_NE(corrected->heights.heights, cl->heights.heights);
 }
+
+// SynthesizerOptions::stop_requested: asked once before each synthesized level on both backends; a
+// request stops the call with kSynthesisStopped, and the same synthesizer then synthesizes the same
+// bits as one that was never asked to stop.
+TEST(Synthesis, AStopRequestEndsTheCallBetweenLevelsAndChangesNothingAfter) {
+    const PixelWindow w{-20, 30, 48, 40};
+    SynthesisParams p;
+    p.seed = 11;
+    const int levels = coarsestSynthesizedLevel(*test::defaultDatabase(), p) + 1;
+    for (SynthesisBackend backend : {SynthesisBackend::Reference, SynthesisBackend::OpenCL}) {
+        int asked = 0, stop_at = 0;  // stop on the stop_at-th question; 0 = never
+        SynthesizerOptions options;
+        options.backend = backend;
+        options.stop_requested = [&] { return ++asked == stop_at; };
+        auto s = Synthesizer::create(test::defaultDatabase(), options);
+        ASSERT_TRUE(s) << s.message();
+        auto whole = s.value()->synthesize(w, p, 0, false);
+        ASSERT_TRUE(whole) << whole.message();
+        EXPECT_EQ(asked, levels);
+        for (int stop : {1, 2, levels}) {
+            asked = 0, stop_at = stop;
+            auto stopped = s.value()->synthesize(w, p, 0, false);
+            ASSERT_FALSE(stopped);
+            EXPECT_EQ(stopped.message(), kSynthesisStopped);
+            EXPECT_EQ(asked, stop);
+        }
+        asked = 0, stop_at = 0;
+        auto again = s.value()->synthesize(w, p, 0, false);
+        ASSERT_TRUE(again) << again.message();
+        EXPECT_TRUE(sameBits(again->heights.heights, whole->heights.heights));
+        Synthesizer& unasked = backend == SynthesisBackend::Reference ? reference() : openCl();
+        EXPECT_TRUE(sameBits(whole->heights.heights, run(unasked, w, 11, 0, false, 2, Drainage::Breach).heights.heights));
+    }
+}

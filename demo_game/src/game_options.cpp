@@ -13,10 +13,11 @@
 #include <CLI/CLI.hpp>
 
 #include "terrasynth/database.h"
+#include "terrasynth/file_transaction.h"
 #include "terrasynth/heightfield_io.h"
 #include "opencl_check.h"
 #include "terrasynth/checked_number.h"
-#include "terrasynth_cli/flag_checks.h"
+#include "terrasynth_flags/flag_checks.h"
 #include "terrasynth_plugin/plugin_options.h"
 
 namespace terrasynth::game {
@@ -52,7 +53,7 @@ std::optional<GameOptions> parseGameOptions(int argc, char** argv, std::optional
     CLI::App app{"terrasynth_game: fly over an endless world synthesized from a seed while you fly"};
     std::string start, size = "1280x720", backend = "opencl";
     uint32_t seed = 0;
-    auto* seed_opt = app.add_option("--seed", seed, "World seed (default: the project's)")->check(cli::FiniteRange(0, 4294967295.0));
+    auto* seed_opt = app.add_option("--seed", seed, "World seed (default: the project's)")->check(flags::FiniteRange(ranges::kSeed));
     app.add_option("--project", o.project_path, "Project (.tsyn) whose exemplars and settings to use")
         ->capture_default_str();
     auto* start_opt = app.add_option("--start", start, "Start position X,Y in km (x east, y north)");
@@ -61,22 +62,22 @@ std::optional<GameOptions> parseGameOptions(int argc, char** argv, std::optional
         ->check(CLI::IsMember({"opencl", "reference"}))
         ->capture_default_str();
     app.add_option("--autopilot", o.autopilot_s, "Fly terrain-following for this many seconds, then quit")
-        ->check(cli::FiniteRange(0.0, 1e6));
+        ->check(flags::FiniteRange(0.0, 1e6));
     app.add_option("--fixed-dt", o.fixed_dt_s, "Deterministic steps of this many simulated seconds per frame")
         ->expected(0, 1)
         ->default_str("0.0333")
-        ->check(cli::FiniteRange(0.001, 1.0));
+        ->check(flags::FiniteRange(0.001, 1.0));
     app.add_option("--screenshot-every", o.screenshot_every, "Save a screenshot every N frames (N steps with --fixed-dt: the settled 3D view); needs --out")
-        ->check(cli::FiniteRange(1, 1000000));
+        ->check(flags::FiniteRange(1, 1000000));
     app.add_option("--out", o.out_dir, "Folder for screenshots");
     app.add_option("--stats", o.stats_path, "Write frame timings and flight statistics (JSON) at exit");
     app.add_option("--terrain-options", o.terrain_options,
                    "Terrain options as for osgviewer -O, e.g. \"pixelError=12 meshStep=2\"");
     app.add_option("--check-holes", o.check_holes_every, "Count hole pixels every N frames (sky drawn magenta)")
-        ->check(cli::FiniteRange(1, 1000000));
+        ->check(flags::FiniteRange(1, 1000000));
     app.add_flag("--replay", o.replay, "After the flight, redraw its camera path with every tile resident");
     app.add_option("--heading", o.heading_deg, "Autopilot course in degrees clockwise from north")
-        ->check(cli::FiniteRange(-360.0, 360.0));
+        ->check(flags::FiniteRange(-360.0, 360.0));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -128,14 +129,9 @@ Status checkOutputs(const GameOptions& o) {
         if (!fs::is_directory(o.out_dir)) return Status::error("--out " + o.out_dir + ": not a folder");
         if (Status s = probeWritable(o.out_dir, "--out " + o.out_dir); !s) return s;
     }
-    if (!o.stats_path.empty()) {
-        const fs::path stats(o.stats_path);
-        if (fs::is_directory(stats)) return Status::error("--stats " + o.stats_path + ": is a folder");
-        const fs::path folder = stats.has_parent_path() ? stats.parent_path() : fs::path(".");
-        if (!fs::is_directory(folder))
-            return Status::error("--stats " + o.stats_path + ": folder " + folder.string() + " does not exist");
-        if (Status s = probeWritable(folder, "--stats " + o.stats_path); !s) return s;
-    }
+    // Written at exit through a FileTransaction, which makes a missing folder: checked as the editor does.
+    if (!o.stats_path.empty())
+        if (Status s = FileTransaction::checkTarget(o.stats_path); !s) return s.withContext("--stats");
     return Status::ok();
 }
 

@@ -10,7 +10,7 @@
 
 #include "terrasynth/checked_number.h"
 #include "terrasynth/file_transaction.h"
-#include "terrasynth_cli/flag_checks.h"
+#include "terrasynth_flags/flag_checks.h"
 #include "terrasynth_plugin/plugin_options.h"
 
 namespace terrasynth::editor {
@@ -54,10 +54,10 @@ Result<EditorOptions> parseEditorOptions(int argc, const char* const* argv, std:
     app.add_option("--size", size, "Window size WxH (default 1280x720)");
     app.add_option("--backend", backend, "Synthesis backend: opencl or reference");
     app.add_option("--clear-color", colour, "Background colour R,G,B in [0, 1]");
-    app.add_option("--ui-scale", o.ui_scale, "Panel scale")->check(cli::FiniteRange(0.5, 4.0));
+    app.add_option("--ui-scale", o.ui_scale, "Panel scale")->check(flags::FiniteRange(0.5, 4.0));
     app.add_option("--drag-preview-levels", o.drag_preview_levels,
                    "Finest levels a drag shows uncorrected until release (0 = full quality every step; default 1)")
-        ->check(cli::FiniteRange(0, 2));
+        ->check(flags::FiniteRange(0, 2));
     app.add_option("--terrain-options", o.terrain_options,
                    "Terrain settings in the plugin's syntax, e.g. \"tileSize=128 pixelError=6\"");
     try {

@@ -1,6 +1,7 @@
 // terrasynth/checked_number.h: the one check of a number given as text, used by every numeric
 // command-line flag of terrasynth, terrasynth_editor and terrasynth_game (through the CLI11
-// validator cli/flags/terrasynth_cli/flag_checks.h) and by the plugin's option string.
+// validator runtime/flags/terrasynth_flags/flag_checks.h) and by the plugin's option string; the
+// same rule for numbers given as numbers (the Python module's) is checkArgument, argument_checks.h.
 //
 // strtod reads "nan", "inf" and "1e999" as numbers, and a range check written as
 // `v < lo || v > hi` (CLI11's Range, an option parser's `d < 0`) is false for NaN, so NaN passes

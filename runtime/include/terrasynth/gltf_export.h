@@ -127,6 +127,12 @@ Status exportHeightmap(const std::string& path, const Heightfield& field, double
                        double origin_y_m = 0.0);
 Status stageHeightmapExport(FileTransaction& transaction, const std::string& path, const Heightfield& field,
                             double origin_x_m = 0.0, double origin_y_m = 0.0);
+// The same for a field holding the samples of `window` of the global grid (at the field's level):
+// a GeoTIFF is placed in the world frame of grid.h, sample (x, y) at (x * spacing, -y * spacing),
+// as `terrasynth synth` and `terrasynth export` place theirs.
+Status exportHeightmap(const std::string& path, const Heightfield& field, const PixelWindow& window);
+Status stageHeightmapExport(FileTransaction& transaction, const std::string& path, const Heightfield& field,
+                            const PixelWindow& window);
 // What exportHeightmap would say about `path`'s extension, without touching the disk.
 Status checkHeightmapExportPath(const std::string& path);
 

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -175,7 +176,18 @@ struct SynthesizerOptions {
     // OpenCL device selection: "" = first GPU if any, else first device; otherwise a substring of
     // the platform or device name. TERRASYNTH_OPENCL_DEVICE overrides it.
     std::string device;
+    // A user's request to stop (the Python module's Ctrl-C; a program's SIGINT handler could set
+    // one too). Asked on the synthesizing thread before each pyramid level of every synthesize()
+    // call, so a call stops within one level's work; when it returns true, that call returns the
+    // error kSynthesisStopped with no output, and what called it (Terrain, EditSession, the lifts)
+    // fails the same way with nothing changed. Called from every thread that synthesizes (tile and
+    // export workers too): it must be thread-safe and cheap (it runs about L + 1 times per call).
+    // Null: never stops.
+    std::function<bool()> stop_requested;
 };
+
+// The message of a synthesis stopped by SynthesizerOptions::stop_requested.
+constexpr const char* kSynthesisStopped = "synthesis stopped on request";
 
 class Synthesizer {
 public:
@@ -203,6 +215,8 @@ public:
 protected:
     explicit Synthesizer(std::shared_ptr<const ExemplarDatabase> db) : db_(std::move(db)) {}
     std::shared_ptr<const ExemplarDatabase> db_;
+    // SynthesizerOptions::stop_requested, set by create(); the backends hand it to the level loop.
+    std::function<bool()> stop_requested_;
 };
 
 // The coarsest level synthesize() runs for `params` on `db`: params.coarsest_level, or the automatic

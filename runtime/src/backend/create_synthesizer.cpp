@@ -13,14 +13,21 @@ Result<std::unique_ptr<Synthesizer>> Synthesizer::create(std::shared_ptr<const E
                                                          const SynthesizerOptions& options) {
     TERRASYNTH_REQUIRE(db != nullptr, "Synthesizer::create needs a database");
     if (db->levels.empty()) return Status::error("database has no levels");
-    if (options.backend == SynthesisBackend::Reference)
-        return std::unique_ptr<Synthesizer>(synth::createReferenceSynthesizer(std::move(db)));
+    std::unique_ptr<Synthesizer> synthesizer;
+    if (options.backend == SynthesisBackend::Reference) {
+        synthesizer = synth::createReferenceSynthesizer(std::move(db));
+    } else {
 #if TERRASYNTH_HAVE_OPENCL
-    return cl::createOpenClSynthesizer(std::move(db), options);
+        auto created = cl::createOpenClSynthesizer(std::move(db), options);
+        if (!created) return created.status();
+        synthesizer = std::move(created.value());
 #else
-    return Status::error("this build has no OpenCL backend (built with TERRASYNTH_WITH_OPENCL=OFF); "
-                         "use the reference backend");
+        return Status::error("this build has no OpenCL backend (built with TERRASYNTH_WITH_OPENCL=OFF); "
+                             "use the reference backend");
 #endif
+    }
+    synthesizer->stop_requested_ = options.stop_requested;
+    return synthesizer;
 }
 
 }  // namespace terrasynth

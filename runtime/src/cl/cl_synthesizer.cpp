@@ -112,7 +112,7 @@ public:
     Result<SynthesisOutput> synthesize(const PixelWindow& window, const SynthesisParams& params, int output_level,
                                        bool want_sources) override {
         size_t peak = 0;
-        auto out = synth::runSynthesis(*db_, window, params, output_level, want_sources, *this, &peak);
+        auto out = synth::runSynthesis(*db_, window, params, output_level, want_sources, *this, stop_requested_, &peak);
         if (out) {
             const double pixels = static_cast<double>(window.width) * window.height;
             bytes_per_pixel_ = (peak * sizeof(cl_float4) + pixels * (want_sources ? 13.0 : 4.0)) / pixels;

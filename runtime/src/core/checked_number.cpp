@@ -2,9 +2,11 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "core/number_text.h"
+#include "terrasynth/argument_checks.h"
 
 namespace terrasynth {
 namespace {
@@ -31,6 +33,13 @@ Result<double> parseFiniteNumber(const std::string& text, double lo, double hi) 
     while (*end == ' ' || *end == '\t') ++end;
     if (*end != '\0' || !std::isfinite(v) || v < lo || v > hi) return refuse();
     return v;
+}
+
+Status checkArgument(const std::string& name, double value, NumberRange range) {
+    if (std::isfinite(value) && value >= range.lo && value <= range.hi) return Status::ok();
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    return Status::error(name + ": expected " + finiteRangeText(range.lo, range.hi) + ", got " + text);
 }
 
 }  // namespace terrasynth

@@ -37,4 +37,16 @@ Status exportHeightmap(const std::string& path, const Heightfield& field, double
     return transaction.commit();
 }
 
+Status stageHeightmapExport(FileTransaction& transaction, const std::string& path, const Heightfield& field,
+                            const PixelWindow& window) {
+    return stageHeightmapExport(transaction, path, field, window.x * field.meters_per_pixel_x,
+                                -window.y * field.meters_per_pixel_y);
+}
+
+Status exportHeightmap(const std::string& path, const Heightfield& field, const PixelWindow& window) {
+    FileTransaction transaction;
+    if (Status s = stageHeightmapExport(transaction, path, field, window); !s) return s;
+    return transaction.commit();
+}
+
 }  // namespace terrasynth

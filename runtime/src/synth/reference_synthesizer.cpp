@@ -111,7 +111,7 @@ public:
                                        bool want_sources) override {
         ReferenceSteps steps(*db_, margins_, level_ground_);
         size_t peak = 0;
-        auto out = runSynthesis(*db_, window, params, output_level, want_sources, steps, &peak);
+        auto out = runSynthesis(*db_, window, params, output_level, want_sources, steps, stop_requested_, &peak);
         if (out) bytes_per_pixel_ = static_cast<double>(peak * sizeof(PixelState)) / (window.width * window.height) +
                                     (want_sources ? 13.0 : 4.0);
         return out;

@@ -99,10 +99,11 @@ namespace {
 // of each block's first pixel, scaled to the output level.
 Result<SynthesisOutput> blockAverageOfCoarsest(const ExemplarDatabase& db, const PixelWindow& window,
                                                const SynthesisParams& params, int output_level, int coarsest,
-                                               bool want_sources, SynthesisSteps& steps, size_t* peak_state_pixels) {
+                                               bool want_sources, SynthesisSteps& steps,
+                                               const std::function<bool()>& stop_requested, size_t* peak_state_pixels) {
     const int d = output_level - coarsest, block = 1 << d;
     const PixelWindow fine{window.x * block, window.y * block, window.width * block, window.height * block};
-    auto synthesized = runSynthesis(db, fine, params, coarsest, want_sources, steps, peak_state_pixels);
+    auto synthesized = runSynthesis(db, fine, params, coarsest, want_sources, steps, stop_requested, peak_state_pixels);
     if (!synthesized) return synthesized.status();
     const SynthesisOutput& in = synthesized.value();
     SynthesisOutput out;
@@ -134,12 +135,14 @@ Result<SynthesisOutput> blockAverageOfCoarsest(const ExemplarDatabase& db, const
 
 Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWindow& window,
                                      const SynthesisParams& params, int output_level, bool want_sources,
-                                     SynthesisSteps& steps, size_t* peak_state_pixels) {
+                                     SynthesisSteps& steps, const std::function<bool()>& stop_requested,
+                                     size_t* peak_state_pixels) {
     Status valid = validateRequest(db, window, params, output_level);
     if (!valid) return valid;
     const int coarsest = coarsestLevel(db, params);
     if (output_level > coarsest)
-        return blockAverageOfCoarsest(db, window, params, output_level, coarsest, want_sources, steps, peak_state_pixels);
+        return blockAverageOfCoarsest(db, window, params, output_level, coarsest, want_sources, steps, stop_requested,
+                                      peak_state_pixels);
     const bool drain = params.drainage == Drainage::Breach;
     const SynthesisPlan plan =
         planSynthesis(window, output_level, coarsest, params.correction_passes, extraMargins(params, coarsest));
@@ -207,9 +210,13 @@ Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWind
         if (!s) return s;
         return history ? steps.recordPass(level, region, history->levels[level].passes.back()) : Status::ok();
     };
+    // Between levels: the one place a synthesis can stop without leaving half a level behind.
+    const auto stopped = [&] { return stop_requested && stop_requested(); };
+    if (stopped()) return Status::error(kSynthesisStopped);
     Status s = steps.init(coarsest, plan.regions[coarsest], params.seed);
     if (!s) return s;
     for (int level = coarsest; level >= output_level; --level) {
+        if (level < coarsest && stopped()) return Status::error(kSynthesisStopped);
         if (level < coarsest) {
             // A preview level is not jittered: no correction follows to make the jitter coherent;
             // nor are the finest levels (kUnjitteredLevels).

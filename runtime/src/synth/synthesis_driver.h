@@ -69,10 +69,12 @@ public:
                            bool want_sources) = 0;
 };
 
-// Validates the request and runs init -> (correct, upsample)* -> correct -> resolve.
+// Validates the request and runs init -> (correct, upsample)* -> correct -> resolve, asking
+// `stop_requested` (may be null; SynthesizerOptions::stop_requested) before each level.
 Result<SynthesisOutput> runSynthesis(const ExemplarDatabase& db, const PixelWindow& window,
                                      const SynthesisParams& params, int output_level, bool want_sources,
-                                     SynthesisSteps& steps, size_t* peak_state_pixels = nullptr);
+                                     SynthesisSteps& steps, const std::function<bool()>& stop_requested,
+                                     size_t* peak_state_pixels = nullptr);
 
 // Checks parameters and window against the database; the message names the parameter.
 Status validateRequest(const ExemplarDatabase& db, const PixelWindow& window, const SynthesisParams& params,

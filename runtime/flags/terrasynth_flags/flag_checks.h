@@ -1,6 +1,8 @@
-// terrasynth_cli/flag_checks.h: the CLI11 validator every numeric flag of terrasynth,
+// terrasynth_flags/flag_checks.h: the CLI11 validator every numeric flag of terrasynth,
 // terrasynth_editor and terrasynth_game uses (instead of CLI::Range, which NaN passes): a finite
-// number in [lo, hi], by terrasynth::parseFiniteNumber, the check the plugin's option string uses.
+// number in [lo, hi], by terrasynth::parseFiniteNumber, the rule the Python module's arguments
+// (terrasynth/argument_checks.h) and the plugin's option string follow too. Header-only; the
+// target terrasynth_flag_checks (runtime/CMakeLists.txt) adds CLI11.
 // A refused value is CLI11's ValidationError: "--flag: expected a finite number in [lo, hi], got 'nan'".
 #pragma once
 
@@ -8,13 +10,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include "terrasynth/argument_checks.h"
 #include "terrasynth/checked_number.h"
 
-namespace terrasynth::cli {
-
-// Bound of each number of a --region X,Y,W,H list: 2^31, so x + width never overflows; the command
-// then checks the region against the grid's own limits (docs/limits.md).
-constexpr double kMaxRegionNumber = 2147483648.0;
+namespace terrasynth::flags {
 
 // For flags that take several values (a delimited list), each value is checked.
 inline CLI::Validator FiniteRange(double lo, double hi) {
@@ -25,5 +24,7 @@ inline CLI::Validator FiniteRange(double lo, double hi) {
         },
         finiteRangeText(lo, hi), "FINITE_RANGE");
 }
+// A range every front end shares (terrasynth/argument_checks.h), e.g. FiniteRange(ranges::kSeed).
+inline CLI::Validator FiniteRange(NumberRange range) { return FiniteRange(range.lo, range.hi); }
 
-}  // namespace terrasynth::cli
+}  // namespace terrasynth::flags
