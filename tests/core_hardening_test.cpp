@@ -148,10 +148,10 @@ TEST(CoreHardening, AHeightmapPairIsReplacedTogetherOrNotAtAll) {
         EXPECT_EQ(readAll(path), "previous image") << ext;
         std::system(("rm -rf '" + dir + "/h.json'").c_str());
         // A real previous pair survives a failure while staging (an unknown extension is refused
-        // before anything; a missing folder fails the first stage).
+        // before anything; a file where the folder should be fails the first stage).
         ASSERT_TRUE(writeHeightfield(path, before));
         const std::string image = readAll(path), sidecar = readAll(dir + "/h.json");
-        EXPECT_FALSE(writeHeightfield(dir + "/missing/h" + std::string(ext), after));
+        EXPECT_FALSE(writeHeightfield(path + "/h" + std::string(ext), after));
         EXPECT_EQ(readAll(path), image);
         EXPECT_EQ(readAll(dir + "/h.json"), sidecar);
         std::remove(path.c_str());

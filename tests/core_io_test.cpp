@@ -176,9 +176,9 @@ TEST(Resample, AnisotropicFujiBecomesSquare) {
 TEST(AtomicWrite, ExistingFileSurvivesFailedWrite) {
     const std::string dir = test::scratchDir("atomic");
     ASSERT_TRUE(writeFileAtomically(dir + "/keep.txt", "precious"));
-    // Writing into a missing folder fails and must not touch anything.
-    Status s = writeFileAtomically(dir + "/missing/keep.txt", "new");
+    // Writing where a file stands in for the folder fails, naming both, and must not touch anything.
+    Status s = writeFileAtomically(dir + "/keep.txt/keep.txt", "new");
     EXPECT_FALSE(s);
-    EXPECT_NE(s.message().find("missing/keep.txt"), std::string::npos);
+    EXPECT_NE(s.message().find("keep.txt/keep.txt: " + dir + "/keep.txt is a file"), std::string::npos) << s.message();
     EXPECT_EQ(*readFileBytes(dir + "/keep.txt"), "precious");
 }

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "terrasynth/edit_session.h"
+#include "terrasynth/heightfield_io.h"
 #include "terrasynth_editor/edit_worker.h"
 #include "terrasynth_editor/latency.h"
 #include "headless_view.h"
@@ -152,7 +153,10 @@ TEST(EditorWorker, FailedEditsChangeNothingAndReportTheirStatus) {
     PointConstraint good;
     good.x = 100, good.y = 100, good.height_m = start.at(100, 100) + 50.0f, good.radius_px = 10;
     worker->submit(request("add point", [good](EditSession& s) { return s.addPoint(good); }));
-    const std::string bad_path = test::scratchDir("editor_worker_fail") + "/missing/folder/w.tsyn";
+    // A file where the save's folder should be (a missing folder would be made).
+    const std::string blocker = test::scratchDir("editor_worker_fail") + "/blocker";
+    ASSERT_TRUE(writeFileAtomically(blocker, "a file"));
+    const std::string bad_path = blocker + "/folder/w.tsyn";
     worker->submit(request("save", [bad_path](EditSession& s) -> Result<PixelWindow> {
         if (Status st = s.save(bad_path); !st) return st;
         return PixelWindow{};
@@ -162,7 +166,7 @@ TEST(EditorWorker, FailedEditsChangeNothingAndReportTheirStatus) {
     ASSERT_EQ(saved.size(), 2u);
     EXPECT_TRUE(saved[0].status) << saved[0].status.message();
     EXPECT_FALSE(saved[1].status);
-    EXPECT_NE(saved[1].status.message().find("missing/folder"), std::string::npos) << saved[1].status.message();
+    EXPECT_NE(saved[1].status.message().find("blocker is a file"), std::string::npos) << saved[1].status.message();
     EXPECT_TRUE(worker->view()->dirty);
 }
 

@@ -86,7 +86,8 @@ TEST(GameBadInput, RefusedBeforeAnyWindowWithExitCodeTwo) {
     std::ofstream(dir + "/a_file") << "x";
     expectRefused("--screenshot-every 5 --out " + dir + "/a_file", "--out");
     expectRefused("--screenshot-every 5", "--screenshot-every needs --out");
-    expectRefused("--stats " + dir + "/no/such/folder/stats.json", "--stats");
+    expectRefused("--stats " + dir + "/a_file/folder/stats.json", "--stats: " + dir + "/a_file/folder/stats.json: " + dir +
+                                                                     "/a_file is a file, not a folder");
     expectRefused("--terrain-options tileSize=7", "tileSize");
     // No OpenCL device: the loader finds no platform; the message suggests the reference backend.
     fs::create_directories(dir + "/no_icd");

@@ -99,16 +99,17 @@ protected:
 TEST_F(CliHardening, ASecondOutputThatCannotBeWrittenLeavesTheFirstAsItWas) {
     const auto planted = plant({"out.png", "out.json"});
     const std::string synth = "synth --db " + db_ + " --size 32x32 --backend reference -o " + path("out.png");
-    expectRefused(synth + " --preview " + path("missing/hs.png"), {"terrasynth synth: --preview: ", "missing/hs.png", "does not exist"},
-                  planted);
-    expectRefused(synth + " --sources " + path("missing/src.png"), {"--sources: ", "missing/src.png"}, planted);
+    // A file where an output's folder should be (a missing folder is made, see below).
+    expectRefused(synth + " --preview " + path("out.json/hs.png"),
+                  {"terrasynth synth: --preview: ", "out.json/hs.png: " + path("out.json") + " is a file, not a folder"}, planted);
+    expectRefused(synth + " --sources " + path("out.json/deeper/src.png"), {"--sources: ", "out.json/deeper/src.png"}, planted);
     expectRefused(synth + " --preview " + path("out.png"), {"--preview: ", "out.png is also written as -o"}, planted);
     expectRefused("synth --db " + db_ + " --size 32x32 -o " + path("a.f32") + " --sources " + path("a.png"),
                   {"--sources (its sidecar): ", "a.json is also written as -o (its sidecar)"}, planted);
     expectRefused("layers " + writeProject("blank.tsyn", {{"layers", {{{"type", "base"}, {"source", "blank"}, {"height_m", 5}}}}}) +
-                      " --size 32,32 --mpp 30 -o " + path("out.png") + " --hillshade " + path("missing/hs.png"),
-                  {"terrasynth layers: --hillshade: ", "missing/hs.png"}, planted);
-    expectRefused("export --heightmap " + path("in.png") + " -o " + path("out.png") + " --masks " + path("missing/m_"),
+                      " --size 32,32 --mpp 30 -o " + path("out.png") + " --hillshade " + path("out.json/hs.png"),
+                  {"terrasynth layers: --hillshade: ", "out.json/hs.png"}, planted);
+    expectRefused("export --heightmap " + path("in.png") + " -o " + path("out.png") + " --masks " + path("out.json/m_"),
                   {"terrasynth export: --masks: "}, planted);
     // The sidecar's place taken by a folder: refused before synthesis, the image untouched.
     ASSERT_EQ(::mkdir(path("hs.json").c_str(), 0755), 0);
@@ -239,6 +240,25 @@ TEST_F(CliHardening, ExportWithASliverTileSucceeds) {
     ASSERT_TRUE(writeHeightfieldPng16(path("h256.png"), test::crop(test::loadExemplarField("orom_rockies"), 0, 0, 256, 256)));
     expectOk("export --heightmap " + path("h256.png") + " -o " + path("t.glb") + " --tile 254 --lods 2");
     expectOk("export --heightmap " + path("h256.png") + " -o " + path("t.gltf") + " --tile 254 --lods 3 --lod-method simplify");
+}
+
+TEST_F(CliHardening, EveryWriterMakesTheFoldersOfItsOutputs) {
+    // Each command writes into folders that do not exist yet, two deep; the files land there.
+    const std::string synth = "synth --db " + db_ + " --size 32x32 --backend reference";
+    expectOk(synth + " -o " + path("s/a/out.png") + " --preview " + path("s/b/hs.png") + " --sources " + path("s/c/src.png"));
+    expectOk(synth + " -o " + path("s/d/out.tif"));
+    expectOk("db build " + path("in.png") + " -o " + path("d/a/db.tsdb") + " --levels 2");
+    const std::string blank = writeProject("blank.tsyn", {{"layers", {{{"type", "base"}, {"source", "blank"}, {"height_m", 5}}}}});
+    expectOk("layers " + blank + " --size 32,32 --mpp 30 -o " + path("l/a/out.png") + " --hillshade " + path("l/b/hs.png"));
+    const std::string project = path("proj.tsyn");
+    expectOk("export " + project + " -o " + path("e/a/t.glb") + " --lods 2 --masks " + path("e/m/mask_"));
+    expectOk("export --heightmap " + path("in.png") + " -o " + path("e/b/t.tif"));
+    expectOk("export " + project + " --preset unreal -o " + path("e/u/terrain.png"));
+    for (const char* file : {"s/a/out.png", "s/a/out.json", "s/b/hs.png", "s/c/src.png", "s/d/out.tif", "d/a/db.tsdb", "l/a/out.png",
+                             "l/b/hs.png", "e/a/t.glb", "e/a/t_lod1.glb", "e/b/t.tif", "e/u/terrain.png"})
+        EXPECT_NE(readAll(path(file)), "<missing>") << file;
+    EXPECT_EQ(std::system(("ls " + path("e/m") + "/mask_*.png >/dev/null").c_str()), 0) << "no masks in e/m";
+    expectIntact({}, "every writer");  // no temporaries left
 }
 
 // ---- The cases the tool already handled, kept as regressions (reconstructed from its messages) ----

@@ -565,19 +565,26 @@ TEST(EditSession, BadInputIsRefusedAndChangesNothing) {
     refused(session->removePaste(5), "no such paste");
     refused(session->setLayerWeights(3, BandWeights{}), "layer index 3");
     refused(session->removeLayer(0), "layer index 0");
-    // Saving into a folder that does not exist: an error naming it, nothing written, still dirty.
+    // Saving where a file stands in for the folder: an error naming it, nothing written (not even
+    // the folders below it), still dirty.
     EXPECT_TRUE(session->isDirty());
-    Status unwritable = session->save(dir + "/missing/edited.tsyn");
+    ASSERT_TRUE(writeFileAtomically(dir + "/blocker", "a file"));
+    Status unwritable = session->save(dir + "/blocker/missing/edited.tsyn");
     ASSERT_FALSE(unwritable);
-    EXPECT_NE(unwritable.message().find("missing/"), std::string::npos) << unwritable.message();
+    EXPECT_NE(unwritable.message().find(dir + "/blocker is a file, not a folder"), std::string::npos) << unwritable.message();
     EXPECT_TRUE(session->isDirty());
-    EXPECT_NE(::access((dir + "/missing").c_str(), F_OK), 0);
+    EXPECT_EQ(*readFileBytes(dir + "/blocker"), "a file");
     EXPECT_FALSE(session->save(dir + "/edited.txt"));
     // A good save still works after all that, and a second one is skipped when nothing changed.
     ASSERT_TRUE(session->save(dir + "/edited.tsyn"));
     bool wrote = true;
     ASSERT_TRUE(session->saveIfDirty(dir + "/edited.tsyn", &wrote));
     EXPECT_FALSE(wrote);
+    // Into folders that do not exist yet: they are made, and the project reopens with its heights.
+    ASSERT_TRUE(session->save(dir + "/new/deeper/edited.tsyn"));
+    auto reopened = openSession(dir + "/new/deeper/edited.tsyn");
+    ASSERT_TRUE(reopened);
+    EXPECT_TRUE(sameBits(reopened->heights().heights, session->heights().heights));
 }
 
 TEST(EditSession, ConstraintsFromAProjectRoundTripThroughTheSession) {

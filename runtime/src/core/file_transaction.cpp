@@ -1,5 +1,6 @@
-// FileTransaction: temporaries first, renames last; previous files kept as hard links until the
-// whole set is in place, so a failed rename can put them back without a moment where they are gone.
+// FileTransaction: missing folders and temporaries first, renames last; previous files kept as hard
+// links until the whole set is in place, so a failed rename can put them back without a moment where
+// they are gone.
 #include "terrasynth/file_transaction.h"
 
 #include <fcntl.h>
@@ -66,6 +67,27 @@ bool exists(const std::string& path) {
     return ::lstat(path.c_str(), &st) == 0;
 }
 
+// The folder `path` goes into, as the nearest path above it that exists (`existing`, which must be a
+// folder) and the folders below that one that are missing (`missing`, outermost first). The error
+// names `path` and what is in the way.
+Status findFolder(const std::string& path, std::string* existing, std::vector<std::string>* missing) {
+    std::string folder = detail::folderOf(path);
+    struct stat st;
+    while (::stat(folder.c_str(), &st) != 0) {
+        // ENOTDIR: a file further up; walking on finds it and names it below.
+        if (errno != ENOENT && errno != ENOTDIR)
+            return Status::error(path + ": cannot look into " + folder + ": " + std::strerror(errno));
+        const std::string up = detail::folderOf(folder);
+        if (up == folder) return Status::error(path + ": cannot look into " + folder);
+        missing->insert(missing->begin(), folder);
+        folder = up;
+    }
+    if (!S_ISDIR(st.st_mode))
+        return Status::error(path + ": " + folder + (S_ISREG(st.st_mode) ? " is a file, not a folder" : " is not a folder"));
+    *existing = folder;
+    return Status::ok();
+}
+
 }  // namespace
 
 FileTransaction::~FileTransaction() {
@@ -75,11 +97,37 @@ FileTransaction::~FileTransaction() {
 void FileTransaction::discard() {
     for (const Staged& s : staged_) std::remove(s.temp.c_str());
     staged_.clear();
+    // Innermost first; a folder someone else has put something in meanwhile stays (rmdir refuses).
+    for (auto it = made_folders_.rbegin(); it != made_folders_.rend(); ++it) ::rmdir(it->c_str());
+    made_folders_.clear();
 }
+
+Status FileTransaction::makeFolderOf(const std::string& path) {
+    std::string existing;
+    std::vector<std::string> missing;
+    if (Status s = findFolder(path, &existing, &missing); !s) return s;
+    for (const std::string& folder : missing) {
+        if (::mkdir(folder.c_str(), 0777) == 0) {
+            made_folders_.push_back(folder);
+            continue;
+        }
+        const int error = errno;
+        struct stat st;
+        // Made by another writer meanwhile: as good, and not this transaction's to remove.
+        if (error == EEXIST && ::stat(folder.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) continue;
+        return Status::error(path + ": cannot make the folder " + folder + ": " + std::strerror(error));
+    }
+    return Status::ok();
+}
+
 
 Status FileTransaction::stage(const std::string& path, const std::string& bytes) {
     TERRASYNTH_REQUIRE(!done_, "FileTransaction::stage after commit");
     if (!failed_) return failed_;
+    if (Status s = makeFolderOf(path); !s) {
+        failed_ = s;
+        return s;
+    }
     const std::string temp = path + ".tmp" + uniqueSuffix();
     if (Status s = writeWhole(temp, path, bytes); !s) {
         failed_ = s;
@@ -93,6 +141,10 @@ Status FileTransaction::stageWith(const std::string& path,
                                   const std::function<Status(const std::string& temporary)>& write) {
     TERRASYNTH_REQUIRE(!done_, "FileTransaction::stageWith after commit");
     if (!failed_) return failed_;
+    if (Status s = makeFolderOf(path); !s) {
+        failed_ = s;
+        return s;
+    }
     const std::string temp = path + ".tmp" + uniqueSuffix();
     // Whatever the writer throws (an encoder's exception) becomes the error, and its temporary goes.
     Status s = guarded(path, [&] { return write(temp); });
@@ -110,9 +162,9 @@ Status FileTransaction::checkTarget(const std::string& path) {
     if (path.empty()) return Status::error("an empty output file name");
     struct stat st;
     if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return Status::error(path + ": is a folder");
-    const std::string folder = detail::folderOf(path);
-    if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
-        return Status::error(path + ": the folder " + folder + " does not exist");
+    std::string folder;
+    std::vector<std::string> missing;  // made by stage()
+    if (Status s = findFolder(path, &folder, &missing); !s) return s;
     if (::access(folder.c_str(), W_OK) != 0)
         return Status::error(path + ": cannot write in " + folder + ": " + std::strerror(errno));
     return Status::ok();
@@ -189,6 +241,7 @@ Status FileTransaction::commit() {
     for (const Replaced& r : replaced)
         if (!r.backup.empty()) std::remove(r.backup.c_str());
     staged_.clear();
+    made_folders_.clear();  // they hold the files now
     return Status::ok();
 }
 
