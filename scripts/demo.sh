@@ -5,7 +5,7 @@
 # where the default project keeps its cache, so the project reuses it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh demo   # the demo profile: no Blender, Chromium, Slurm, clang, valgrind or Node.js
 bash scripts/build.sh
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl_cache}"
 mkdir -p out "$POCL_CACHE_DIR"

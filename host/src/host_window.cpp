@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 
 #include <osg/GL>
 #define GLFW_INCLUDE_NONE
@@ -70,6 +71,7 @@ struct HostWindow::Impl {
     double mouse_x = 0.0, mouse_y = 0.0;
     std::array<bool, 5> mouse_held{}, mouse_pressed{};
     bool close_requested = false;
+    long frames_left = 0;  // OSG_RUN_FRAME_COUNT's frames still to end; 0: no limit
     bool first_frame = true;
     Clock::time_point frame_start, app_start, draw_start;
     double frame_start_cpu = 0.0, draw_start_cpu = 0.0;
@@ -222,6 +224,8 @@ Result<std::unique_ptr<HostWindow>> HostWindow::create(const HostOptions& o) {
     std::unique_ptr<HostWindow> host(new HostWindow(o));
     Impl& impl = *host->impl_;
     impl.window = window;
+    // As osgViewer's run() reads it (a count of frames, then done).
+    if (const char* count = std::getenv("OSG_RUN_FRAME_COUNT")) impl.frames_left = std::max(0L, std::strtol(count, nullptr, 10));
     glfwMakeContextCurrent(window);
     glfwSwapInterval(o.vsync ? 1 : 0);
     if (const GLubyte* renderer = glGetString(GL_RENDERER)) host->gl_renderer_ = reinterpret_cast<const char*>(renderer);
@@ -380,6 +384,7 @@ FrameTiming HostWindow::endFrame(double simulation_time_s) {
     t.swap_ms = msBetween(swap_start, end);
     t.frame_ms = msBetween(impl.frame_start, end);
     t.main_cpu_ms = threadCpuMs() - impl.frame_start_cpu;
+    if (impl.frames_left > 0 && --impl.frames_left == 0) impl.close_requested = true;
     return t;
 }
 

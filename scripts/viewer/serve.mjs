@@ -45,7 +45,9 @@ export function serveWorld(worldDir, port = 8080) {
   });
 }
 
-if (process.argv[1] === fileURLToPath(import.meta.url)) {
+// Run as a program (not imported by screenshot.mjs): node resolves links in import.meta.url, not in
+// argv[1], so a checkout reached through a link must compare real paths (else nothing is served).
+if (process.argv[1] && fs.realpathSync(process.argv[1]) === fileURLToPath(import.meta.url)) {
   const args = process.argv.slice(2);
   const world = args[0];
   const portAt = args.indexOf('--port');

@@ -80,7 +80,10 @@ public:
     // clock), draws ImGui over it, takes a requested screenshot, swaps. Returns the frame's timing.
     FrameTiming endFrame(double simulation_time_s = -1.0);
 
-    // Asks beginFrame to report a close (like the window's close button).
+    // Asks beginFrame to report a close (like the window's close button). The environment variable
+    // OSG_RUN_FRAME_COUNT=N, which osgViewer's run() obeys (osgviewer quits after N frames), does the
+    // same here after N endFrame calls, so the editor and the game can be run for a few frames as
+    // printed (the README commands' test, tests/readme_commands_test.py); unset, 0 or not a number: no limit.
     void requestClose();
     bool closeRequested() const;
 
