@@ -18,7 +18,7 @@ import argparse, os, sys
 from PIL import Image, ImageDraw
 
 from hillshade_pairs import SHARED, hillshade  # the same sun and the same exemplars as the sheets
-import realism  # on the path through survey_outputs; its loader: the PNG's sidecar height range, the .f32's size, finite heights
+import realism  # on the path through survey_outputs; its loader reads sidecars, sizes, finite heights
 
 GAP = 4
 

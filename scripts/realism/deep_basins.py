@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""deep_basins.py -- how much of a synthesis lies in deep closed basins? (docs/realism.md, experiment log)
+"""deep_basins.py -- how much of a synthesis lies in deep closed basins? (docs/realism.md; docs/realism_log.md)
 
 The realism gate's closed-depression figure counts every cell Priority-Flood raises, shallow pits and
 regional basins alike. This splits it: for one-exemplar syntheses written by `terrasynth synth -o

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""flat_sources.py -- does a synthesis keep its exemplar's flats flat? (docs/realism.md, experiment log)
+"""flat_sources.py -- does a synthesis keep its exemplar's flats flat? (docs/realism.md; docs/realism_log.md)
 
 For one-exemplar syntheses written by `terrasynth synth -o OUT.f32 --sources SRC.png` (as
 scripts/realism/realism_survey.py --keep leaves them: WORK/<exemplar>_s<seed>.f32 and _src.png), it reads

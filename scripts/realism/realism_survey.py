@@ -12,8 +12,9 @@ share of the output against its share of the database pixels.
 
 usage:
   scripts/realism/realism_survey.py [--bin build/bin/terrasynth] [--work /tmp/survey] [--seeds 3,4,5]
-                            [--size 1024] [--only wn_mackay,orom_rockies] [--project-json '{"drainage":"off"}']
-                            [--multi] [--json out.json] [--jobs 2] [--keep]
+                                    [--size 1024] [--only wn_mackay,orom_rockies]
+                                    [--project-json '{"drainage":"off"}'] [--multi] [--json out.json]
+                                    [--jobs 2] [--keep] [--discriminator]
 Needs Debian's python3 with numpy, scipy and PIL (the realism instrument's dependencies).
 """
 import argparse, concurrent.futures as cf, glob, json, os, statistics, subprocess, sys, time
