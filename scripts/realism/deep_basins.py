@@ -1,9 +1,9 @@
 #!/usr/bin/python3
-"""deep_basins.py -- how much of a synthesis lies in deep closed basins? (docs/realism.md, experiment log)
+"""deep_basins.py -- how much of a synthesis lies in deep closed basins? (docs/realism.md; docs/realism_log.md)
 
 The realism gate's closed-depression figure counts every cell Priority-Flood raises, shallow pits and
 regional basins alike. This splits it: for one-exemplar syntheses written by `terrasynth synth -o
-OUT.f32` (as scripts/realism_survey.py --keep leaves them: WORK/<exemplar>_s<seed>.f32) it reports,
+OUT.f32` (as scripts/realism/realism_survey.py --keep leaves them: WORK/<exemplar>_s<seed>.f32) it reports,
 for the synthesis and for its exemplar,
   * closed: the share of cells in closed depressions (raised by more than 1 cm by Priority-Flood);
   * deep: the share in depressions whose deepest cell lies more than DEEP_SHARE of the relief (1st to
@@ -13,7 +13,7 @@ for the synthesis and for its exemplar,
 Closed regions are 8-connected, as Priority-Flood drains.
 
 usage:
-  scripts/deep_basins.py --work /tmp/survey [--seed 3] [--only orom_alaska,orom_rockies]
+  scripts/realism/deep_basins.py --work /tmp/survey [--seed 3] [--only orom_alaska,orom_rockies]
 Needs Debian's python3 with numpy, scipy and PIL (the realism instrument's dependencies).
 """
 import argparse

@@ -1,16 +1,22 @@
 """survey_outputs.py -- what the scripts reading a realism survey's kept syntheses share.
 
-scripts/realism_survey.py --keep leaves, per shared exemplar and seed, WORK/<exemplar>_s<seed>.f32
+scripts/realism/realism_survey.py --keep leaves, per shared exemplar and seed, WORK/<exemplar>_s<seed>.f32
 (with its JSON sidecar) and WORK/<exemplar>_s<seed>_src.png (the sources map). The scripts that
 measure those (flat_sources.py, deep_basins.py) take the same arguments and walk the same names;
 importing this module also puts the realism instrument (../shared/realism) on the import path.
+It is also where every script in scripts/realism/ finds the repository and the shared data.
 """
 import os
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHARED = os.path.join(os.path.dirname(ROOT), 'shared')
-sys.path.insert(0, os.path.join(SHARED, 'realism'))
+HERE = os.path.dirname(os.path.abspath(__file__))  # scripts/realism
+ROOT = os.path.dirname(os.path.dirname(HERE))  # the repository (worktree) root
+SHARED = os.path.normpath(os.path.join(ROOT, '..', 'shared'))  # the shared data beside it
+if not os.path.isdir(SHARED):
+    SHARED = '/work/shared'
+REALISM = os.path.join(SHARED, 'realism')  # the instrument: realism.py, realism_gate.py, discriminator.py
+if REALISM not in sys.path:
+    sys.path.insert(0, REALISM)
 
 
 def add_arguments(ap):

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""flat_sources.py -- does a synthesis keep its exemplar's flats flat? (docs/realism.md, experiment log)
+"""flat_sources.py -- does a synthesis keep its exemplar's flats flat? (docs/realism.md; docs/realism_log.md)
 
 For one-exemplar syntheses written by `terrasynth synth -o OUT.f32 --sources SRC.png` (as
-scripts/realism_survey.py --keep leaves them: WORK/<exemplar>_s<seed>.f32 and _src.png), it reads
+scripts/realism/realism_survey.py --keep leaves them: WORK/<exemplar>_s<seed>.f32 and _src.png), it reads
 each output pixel's source in the exemplar and reports
   * flat sources: the share of output pixels copied from exemplar pixels under FLAT_DEG (the
     discriminator's `flat_abs` threshold), against the exemplar's own share of such pixels;
@@ -22,7 +22,7 @@ each output pixel's source in the exemplar and reports
 Slopes are the realism instrument's (../shared/realism/realism.py, Zevenbergen & Thorne).
 
 usage:
-  scripts/flat_sources.py --work /tmp/survey [--seed 3] [--only orom_alaska,orom_norway]
+  scripts/realism/flat_sources.py --work /tmp/survey [--seed 3] [--only orom_alaska,orom_norway]
 Needs Debian's python3 with numpy, scipy, PIL and sklearn (the realism instrument's dependencies).
 """
 import argparse

@@ -5,11 +5,11 @@ The discriminator (../shared/realism/discriminator.py) compares 128 px crops; th
 as a geomorphologist would look at them: one row per exemplar, its central CROP^2 pixels next to the
 central CROP^2 of each synthesis, every panel hillshaded the same way (sun from the north-west at
 45 deg, at the exemplar's spacing) and each pixel drawn as a SCALE x SCALE square (no filtering).
-The syntheses are those `scripts/realism_survey.py --keep` left in its work folders
+The syntheses are those `scripts/realism/realism_survey.py --keep` left in its work folders
 (<exemplar>_s<seed>.f32 with its .json), so the sheet shows exactly what was scored.
 
 usage:
-  scripts/closeup_sheet.py --out docs/images/closeup_median_offset.jpg --seed 3 \\
+  scripts/realism/closeup_sheet.py --out docs/images/closeup_median_offset.jpg --seed 3 \\
       --only orom_highlands,orom_sahara --survey before=/tmp/surv/base --survey after=/tmp/surv/new
 Needs Debian's python3 with numpy and PIL.
 """
@@ -17,12 +17,8 @@ import argparse, os, sys
 
 from PIL import Image, ImageDraw
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
 from hillshade_pairs import SHARED, hillshade  # the same sun and the same exemplars as the sheets
-
-sys.path.insert(0, os.path.join(SHARED, 'realism'))
-import realism  # its loader: the PNG's sidecar height range, the .f32's size, finite heights
+import realism  # on the path through survey_outputs; its loader reads sidecars, sizes, finite heights
 
 GAP = 4
 

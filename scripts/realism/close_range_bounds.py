@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """close_range_bounds.py -- how close to its exemplar could copy-based synthesis come up close?
 
-Constructions outside the synthesizer, scored as scripts/realism_survey.py scores a synthesis (the
+Constructions outside the synthesizer, scored as scripts/realism/realism_survey.py scores a synthesis (the
 realism gate's five figures and the discriminator's copy-aware AUC, ../shared/realism), to tell what
 a change to the synthesis could buy before it is built (docs/realism.md, "What the targets ask"):
 
@@ -24,9 +24,9 @@ a change to the synthesis could buy before it is built (docs/realism.md, "What t
            the exemplar itself would score.
 
 usage:
-  scripts/close_range_bounds.py poisson --survey /tmp/survey --work /tmp/bounds/poisson [--seeds 3,4]
-  scripts/close_range_bounds.py quilt --work /tmp/bounds/quilt [--seeds 3,4] [--block 192 --overlap 64 --tries 20]
-  scripts/close_range_bounds.py null [--reps 10]
+  scripts/realism/close_range_bounds.py poisson --survey /tmp/survey --work /tmp/bounds/poisson [--seeds 3,4]
+  scripts/realism/close_range_bounds.py quilt --work /tmp/bounds/quilt [--seeds 3,4] [--block 192 --overlap 64 --tries 20]
+  scripts/realism/close_range_bounds.py null [--reps 10]
 common: [--only orom_alaska,orom_norway] [--jobs 2] [--json out.json]
 Needs Debian's python3 with numpy, scipy, PIL and sklearn (the realism instrument's dependencies).
 """

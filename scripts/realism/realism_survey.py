@@ -11,19 +11,15 @@ With --multi it instead builds one database of all the given exemplars and repor
 share of the output against its share of the database pixels.
 
 usage:
-  scripts/realism_survey.py [--bin build/bin/terrasynth] [--work /tmp/survey] [--seeds 3,4,5]
-                            [--size 1024] [--only wn_mackay,orom_rockies] [--project-json '{"drainage":"off"}']
-                            [--multi] [--json out.json] [--jobs 2] [--keep]
+  scripts/realism/realism_survey.py [--bin build/bin/terrasynth] [--work /tmp/survey] [--seeds 3,4,5]
+                                    [--size 1024] [--only wn_mackay,orom_rockies]
+                                    [--project-json '{"drainage":"off"}'] [--multi] [--json out.json]
+                                    [--jobs 2] [--keep] [--discriminator]
 Needs Debian's python3 with numpy, scipy and PIL (the realism instrument's dependencies).
 """
 import argparse, concurrent.futures as cf, glob, json, os, statistics, subprocess, sys, time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-SHARED = os.path.normpath(os.path.join(ROOT, '..', 'shared'))
-if not os.path.isdir(SHARED):
-    SHARED = '/work/shared'
-REALISM = os.path.join(SHARED, 'realism')
+from survey_outputs import ROOT, SHARED, REALISM  # the repository, the shared data, the instrument
 LIMITS = {'log10_area_m2/iqr': 0.107, 'fill_pct': 7.58, 'slope_deg/iqr': 0.61,
           'curv_profile/iqr': 0.477, 'geomorphon_L1_pp': 32.6}
 SHORT = {'slope_deg/iqr': 'slope', 'curv_profile/iqr': 'curv', 'geomorphon_L1_pp': 'landf',

@@ -7,7 +7,7 @@ when smaller) next to each synthesis, all hillshaded the same way (sun from the 
 at the exemplar spacing, each panel downsampled to PANEL pixels.
 
 usage:
-  scripts/hillshade_pairs.py --out docs/images --only wn_mackay,wn_big_butte \
+  scripts/realism/hillshade_pairs.py --out docs/images --only wn_mackay,wn_big_butte \
       --run before=/tmp/base/terrasynth --run after=build/bin/terrasynth --run breach=build/bin/terrasynth:breach
   --fill tints red the cells that the steering instrument's depression filling raises (the
   `fill_pct` of issue 17), and --suffix names the sheets hillshade_<exemplar><suffix>.png.
@@ -18,10 +18,7 @@ import argparse, json, os, subprocess, sys, tempfile
 import numpy as np
 from PIL import Image, ImageDraw
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SHARED = os.path.normpath(os.path.join(HERE, '..', '..', 'shared'))
-if not os.path.isdir(SHARED):
-    SHARED = '/work/shared'
+from survey_outputs import SHARED  # also puts the realism instrument on the import path
 
 
 def hillshade(z, mpp):
@@ -35,8 +32,6 @@ def hillshade(z, mpp):
 
 def raised_cells(z):
     """Cells the realism instrument's Priority-Flood+epsilon raises (its fill_pct)."""
-    if os.path.join(SHARED, 'realism') not in sys.path:  # once, not per panel
-        sys.path.insert(0, os.path.join(SHARED, 'realism'))
     import realism
     return realism.priority_flood_eps(z.astype(np.float64)) > z
 
