@@ -34,7 +34,7 @@ test_packages=(
   # GDAL's tools make the tests' GeoTIFFs.
   gdal-bin
   python3-numpy
-  # The realism instrument in ../shared/realism (scripts/realism_survey.py, closeup_sheet.py,
+  # The realism instrument in ../shared/realism (scripts/realism/realism_survey.py, closeup_sheet.py,
   # hillshade_pairs.py): its gate needs scipy, its discriminator scikit-learn.
   python3-scipy python3-sklearn
   # The Python module (python/) and its pytest suite.

@@ -9,7 +9,7 @@
 // wn_big_butte: valley floors or plain around relief, 30 m), the smoothest and a rough default
 // exemplar (orom_appalachians, orom_rockies) and a 30 m fluvial one (ttb_bigtujunga); drainage on
 // all 14 fluvial exemplars. Every shared exemplar at 1024^2 and several seeds, with the steering
-// instrument, is scripts/realism_survey.py (docs/realism.md has its figures).
+// instrument, is scripts/realism/realism_survey.py (docs/realism.md has its figures).
 #include <gtest/gtest.h>
 
 #include <algorithm>
