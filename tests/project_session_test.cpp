@@ -2,12 +2,14 @@
 // with exact undo and redo, saving and reopening with the edited-heights sidecar, the height source
 // against the session, concurrent tile reads during edits, and bad input.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <set>
@@ -861,6 +863,82 @@ TEST(EditSession, BadInputIsRefusedAndChangesNothing) {
     bool wrote = true;
     ASSERT_TRUE(session->saveIfDirty(dir + "/edited.tsyn", &wrote));
     EXPECT_FALSE(wrote);
+}
+
+TEST(EditSession, AFullDiskOrReadOnlyFolderFailsTheSaveNamingTheFileAndKeepsTheOldOnes) {
+    // The editor's save and autosave (save, saveIfDirty) on a small filesystem of our own: a tmpfs
+    // mounted in a private user and mount namespace, where this test runs itself again.
+    const std::string filter = "EditSession.AFullDiskOrReadOnlyFolderFailsTheSaveNamingTheFileAndKeepsTheOldOnes";
+    const char* mounted = std::getenv("TERRASYNTH_TEST_PRIVATE_TMPFS");
+    if (!mounted) {
+        if (std::system("unshare -rm sh -c 'mount -t tmpfs -o size=64k tmpfs /mnt' >/dev/null 2>&1") != 0)
+            GTEST_SKIP() << "cannot mount a private tmpfs here (unshare -rm refused: no user namespaces or mounts)";
+        const std::string small = test::scratchDir("session_disk_faults") + "/small";
+        ASSERT_EQ(::mkdir(small.c_str(), 0755), 0);
+        char self[4096] = {};
+        ASSERT_GT(::readlink("/proc/self/exe", self, sizeof self - 1), 0);
+        const std::string command = "unshare -rm sh -c \"mount -t tmpfs -o size=48m tmpfs '" + small +
+                                    "' && TERRASYNTH_TEST_PRIVATE_TMPFS='" + small + "' exec '" + self +
+                                    "' --gtest_filter=" + filter + "\"";
+        ASSERT_EQ(std::system(command.c_str()), 0) << "the run inside the private mount failed (its output is above)";
+        return;
+    }
+    const std::string small = mounted;
+    auto session = openSession(writeProject(test::scratchDir("session_disk_faults_project"), 27));
+    ASSERT_TRUE(session);
+    std::mt19937 rng(27);
+    randomEdit(*session, rng, 0);
+    const std::string saved = small + "/edited.tsyn", autosave = small + "/edited.autosave.tsyn";
+    ASSERT_TRUE(session->save(saved));
+    randomEdit(*session, rng, 16);
+    bool wrote = false;
+    ASSERT_TRUE(session->saveIfDirty(autosave, &wrote));
+    ASSERT_TRUE(wrote);
+    const std::vector<std::string> files = test::filesUnder(small);
+    std::vector<std::string> bytes;
+    for (const std::string& f : files) bytes.push_back(test::readFile(small + "/" + f));
+    auto intact = [&](const char* when) {
+        EXPECT_EQ(test::filesUnder(small).size(), files.size() + (std::string(when) == "full" ? 1 : 0)) << when << ": temporaries left";
+        for (size_t i = 0; i < files.size(); ++i) EXPECT_EQ(test::readFile(small + "/" + files[i]), bytes[i]) << when << ": " << files[i];
+    };
+    const std::vector<float> edited_heights = (randomEdit(*session, rng, 1), session->heights().heights);
+
+    // Full: both saves fail naming a file of theirs, the old files are as they were, the session
+    // stays dirty and edits on; with room again the same save works.
+    ASSERT_NE(std::system(("dd if=/dev/zero of='" + small + "/filler' bs=64k 2>/dev/null").c_str()), -1);
+    for (const std::string& path : {saved, autosave}) {
+        const Status full = session->save(path);
+        ASSERT_FALSE(full) << path;
+        EXPECT_NE(full.message().find(small + "/edited"), std::string::npos) << full.message();
+        EXPECT_NE(full.message().find("disk full"), std::string::npos) << full.message();
+        std::printf("full disk: %s\n", full.message().c_str());
+    }
+    EXPECT_FALSE(session->saveIfDirty(autosave));
+    EXPECT_TRUE(session->isDirty());
+    intact("full");
+    ASSERT_TRUE(session->undo());
+    ASSERT_TRUE(session->redo());
+    EXPECT_TRUE(sameBits(session->heights().heights, edited_heights));
+    ASSERT_EQ(::unlink((small + "/filler").c_str()), 0);
+    ASSERT_TRUE(session->save(saved));
+    auto reopened = openSession(saved);
+    ASSERT_TRUE(reopened);
+    EXPECT_TRUE(sameBits(reopened->heights().heights, edited_heights));
+
+    // Read-only: the same.
+    randomEdit(*session, rng, 10);
+    for (size_t i = 0; i < files.size(); ++i) bytes[i] = test::readFile(small + "/" + files[i]);
+    ASSERT_EQ(std::system(("mount -o remount,ro '" + small + "'").c_str()), 0);
+    const Status readonly = session->saveIfDirty(autosave);
+    ASSERT_FALSE(readonly);
+    EXPECT_NE(readonly.message().find(small + "/edited.autosave."), std::string::npos) << readonly.message();
+    EXPECT_NE(readonly.message().find("Read-only file system"), std::string::npos) << readonly.message();
+    std::printf("read-only folder: %s\n", readonly.message().c_str());
+    intact("read-only");
+    EXPECT_TRUE(session->isDirty());
+    const std::string elsewhere = test::scratchDir("session_disk_faults_elsewhere") + "/edited.tsyn";
+    ASSERT_TRUE(session->save(elsewhere));  // still usable: saved where there is room
+    EXPECT_FALSE(session->isDirty());
 }
 
 TEST(EditSession, ConstraintsFromAProjectRoundTripThroughTheSession) {
