@@ -12,6 +12,11 @@
 #   SANITIZE_SCOPE=input scripts/sanitize.sh address     # the runtime's and CLI's bad-input
 #                                                        # programs and the fuzz corpus (what CI
 #                                                        # runs, see scripts/test.sh)
+#   SANITIZE_SCOPE=threads scripts/sanitize.sh thread    # the code threads share: the plugin's
+#                                                        # paging, workers and tile store, the edit
+#                                                        # thread, the session's readers, the game's
+#                                                        # ground cache, the runtime's workers
+#                                                        # (THREAD_TEST_PROGRAMS; what CI runs)
 #   SANITIZE_EXCLUDE_LABEL='survey|costly' scripts/sanitize.sh address   # ctest -LE: without the
 #                                                        # surveys and the costly tests
 #                                                        # (tests/CMakeLists.txt; CI leaves both out)
@@ -27,19 +32,23 @@ run() {
   local name=$1 sanitizers=$2 dir=build-$1
   local start=$SECONDS
   # Every scope sets all of these, so a build folder configured for one scope serves another.
-  local front_ends=ON programs="" exclude=()
+  local front_ends=ON programs="" exclude=() select=${SANITIZE_TESTS:-} targets=()
   case "${SANITIZE_SCOPE:-all}" in
     all) ;;
     runtime) front_ends=OFF ;;
     input) front_ends=OFF programs=$INPUT_TEST_PROGRAMS
       exclude=(-E '^TestDatabases[.]Shared') ;;  # no bad-input program reads the shared database
-    *) echo "sanitize.sh: SANITIZE_SCOPE must be all, runtime or input, not '$SANITIZE_SCOPE'" >&2; return 2 ;;
+    threads) programs=$THREAD_TEST_PROGRAMS select=${SANITIZE_TESTS:-$THREAD_TESTS}
+      # Only the test programs (and what they run: the osgDB module, the editor and the game), not
+      # the CLI, the viewers or the bench.
+      targets=(--target $(echo "$THREAD_TEST_PROGRAMS" | tr -d '^$()' | tr '|' ' ')) ;;
+    *) echo "sanitize.sh: SANITIZE_SCOPE must be all, runtime, input or threads, not '$SANITIZE_SCOPE'" >&2; return 2 ;;
   esac
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTERRASYNTH_SANITIZE="$sanitizers" \
     -DTERRASYNTH_BUILD_BENCH=OFF -DTERRASYNTH_BUILD_PLUGIN=$front_ends -DTERRASYNTH_BUILD_HOST=$front_ends \
     -DTERRASYNTH_BUILD_EDITOR=$front_ends -DTERRASYNTH_BUILD_GAME=$front_ends \
     -DTERRASYNTH_TEST_PROGRAMS="$programs" >/dev/null
-  cmake --build "$dir" -j"$jobs"
+  cmake --build "$dir" -j"$jobs" "${targets[@]}"
   local built=$SECONDS
   export POCL_CACHE_DIR="$PWD/$dir/pocl_cache"
   mkdir -p "$POCL_CACHE_DIR"
@@ -51,7 +60,7 @@ run() {
       --gtest_filter='Synthesis.AdjacentWindowsEqualHalvesOfTheWholeWindow' >/dev/null 2>&1 || true
   fi
   local status=0
-  ctest --test-dir "$dir" --output-on-failure -j"$jobs" --timeout 3000 ${SANITIZE_TESTS:+-R "$SANITIZE_TESTS"} \
+  ctest --test-dir "$dir" --output-on-failure -j"$jobs" --timeout 3000 ${select:+-R "$select"} \
     ${SANITIZE_EXCLUDE_LABEL:+-LE "$SANITIZE_EXCLUDE_LABEL"} "${exclude[@]}" || status=$?
   # LeakSanitizer's tracer now and then crashes by itself at exit, after a passing test
   # (sanitizer_tool_crashes.py says why); such tests, and only when every failure is one, run once more.
@@ -67,6 +76,11 @@ run() {
 # The bad-input suite (SANITIZE_SCOPE=input): the programs that feed the readers, parsers and
 # writers corrupt, hostile or absurd input, plus the replay of the fuzz corpus (always built).
 INPUT_TEST_PROGRAMS='hardening|hostile|sidecar|^core_io_test$|^core_transaction_test$|^project_format_test$|^db_dem_cli_test$|^db_test_databases_test$'
+# The threads suite (SANITIZE_SCOPE=threads): the programs whose code runs on several threads at
+# once, and of them the tests that drive those threads (the others are single-threaded runs of the
+# same programs, minutes under TSan). cl_synthesis_test is built for the kernel warm-up above.
+THREAD_TEST_PROGRAMS='^(plugin_paging_test|plugin_pool_internal_test|plugin_store_internal_test|editor_worker_test|project_session_test|game_flight_test|core_workers_internal_test|db_test_databases_test|cl_synthesis_test)$'
+THREAD_TESTS='^(PluginPaging|PluginPool|PluginStore|EditorWorker|EditorLatency|GameGround|CoreWorkers)[.]|^EditSession[.]TilesReadOnTwoThreads|^TestDatabases[.]Default'
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1:strict_string_checks=1
 export LSAN_OPTIONS=suppressions=$PWD/scripts/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1

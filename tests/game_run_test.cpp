@@ -217,4 +217,24 @@ TEST(GameExit, ClosingWhileWorkersAreBusyJoinsThemAndExitsZero) {
     EXPECT_TRUE(s.value("clean_exit", false));
 }
 
+TEST(GameSoak, FourMinutesOverNewGroundMemoryPlateausAndCachesStayWithinTheirCaps) {
+    // scripts/soak_game.sh 240 (label `soak`): resident memory at the end within 10% of its value
+    // at a fifth of the flight, the tile and ground caches within their caps; frame times are the
+    // script's full run's to judge (SOAK_CHECK_FRAMES=0: no speed in tests).
+    if (!canShowWindows()) GTEST_SKIP() << "no DISPLAY and no xvfb-run";
+    const std::string dir = terrasynth::test::scratchDir("game_soak");
+    const std::string repo = terrasynth::test::dataDir() + "/..";
+    const std::string build = fs::path(terrasynth::test::binDir()).parent_path().string();
+    const CliRun r = terrasynth::test::runCommand("cd '" + repo + "' && OUT='" + dir +
+                                                  "' SOAK_CHECK_FRAMES=0 bash scripts/soak_game.sh 240 '" + build + "'");
+    std::printf("%s\n", r.out.c_str());
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    const json soak = readJson(dir + "/soak.json");
+    ASSERT_TRUE(soak.contains("checks")) << r.out;
+    for (const auto& [name, ok] : soak["checks"].items()) EXPECT_TRUE(ok.get<bool>()) << name;
+    EXPECT_GE(soak["game_series"].size(), 20u);  // a sample every 10 s
+    EXPECT_GT(soak["distance_km"].get<double>(), 30.0);  // new ground all the way
+    EXPECT_EQ(soak["tiles"]["build_failures"].get<int>(), 0);
+}
+
 }  // namespace

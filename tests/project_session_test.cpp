@@ -2,13 +2,19 @@
 // with exact undo and redo, saving and reopening with the edited-heights sidecar, the height source
 // against the session, concurrent tile reads during edits, and bad input.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <random>
+#include <set>
 #include <thread>
+#include <variant>
 
 #include "terrasynth/edit_session.h"
 #include "terrasynth/heightfield_io.h"
@@ -145,6 +151,127 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
+// The long session's edits: every tool the session offers in turn, kinds 0..19 of randomEdit (points,
+// curves, type paint, freeze, pastes, a peak layer, band weights, visibility, re-seed) and the layer
+// tools and operations 20..31 (ridge, paste from the terrain, flatten, hole fill, noise, replace,
+// move, merge, remove, base weights, widget removal, a previewed drag). The working set is bounded as
+// a designer's is: beyond 5 points, 3 curves, 3 pastes or 6 layers the edit removes one instead, so
+// what grows over thousands of edits is only what the session keeps of its history.
+constexpr int kSoakKinds = 32;
+
+std::string soakEdit(EditSession& s, std::mt19937& rng, int step) {
+    auto check = [&](const Result<PixelWindow>& r, const char* name) {
+        EXPECT_TRUE(r) << "edit " << step << " " << name << ": " << r.message();
+        return std::string(name);
+    };
+    auto last = [](auto ids) { return ids.back(); };
+    if (s.pointIds().size() > 5) return check(s.removePoint(last(s.pointIds())), "removePoint (bound)");
+    if (s.curveIds().size() > 3) return check(s.removeCurve(last(s.curveIds())), "removeCurve (bound)");
+    if (s.pasteIds().size() > 3) return check(s.removePaste(last(s.pasteIds())), "removePaste (bound)");
+    const int layers = static_cast<int>(s.layers().layers.size());
+    if (layers > 6) return check(s.removeLayer(layers - 1), "removeLayer (bound)");
+    const int kind = step % kSoakKinds;
+    if (kind < 20) return randomEdit(s, rng, kind);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    auto local = [&](int margin) {  // extent pixels
+        const auto [x, y] = site(rng, margin);
+        return std::array<double, 2>{x - kOriginX, y - kOriginY};
+    };
+    const auto c = local(40);
+    auto add = [&](ToolParams tool) {
+        const char* type = toolTypeName(tool);
+        EditLayer layer;
+        layer.name = std::string(type) + " " + std::to_string(step);
+        layer.weights = defaultWeights(tool);
+        layer.tool = std::move(tool);
+        return check(s.addLayer(std::move(layer)), type);
+    };
+    switch (kind) {
+    case 20: {
+        RidgeParams ridge;
+        ridge.points = {local(30), local(30)};
+        ridge.profile_m = {150.0 + 200.0 * unit(rng), 80.0};
+        ridge.width_px = 6 + 10 * unit(rng);
+        return add(ridge);
+    }
+    case 21: {
+        PasteParams paste;  // a piece of the terrain below, elsewhere
+        const auto from = local(40);
+        paste.source_x = from[0] - 16, paste.source_y = from[1] - 16;
+        paste.dest = Region{RegionShape::Ellipse, c[0] - 16, c[1] - 16, 32, 32};
+        paste.vertical_scale = 0.5 + unit(rng);
+        return add(paste);
+    }
+    case 22: {
+        PasteParams flatten;  // the editor's flatten tool (editor_ui/src/tools/flatten_tool.cpp)
+        flatten.dest = Region{RegionShape::Ellipse, c[0] - 20, c[1] - 20, 40, 40};
+        flatten.source_x = flatten.dest.x, flatten.source_y = flatten.dest.y;
+        flatten.blend = PasteBlend::Replace;
+        flatten.vertical_scale = 0.1;
+        flatten.feather_px = 10;
+        return add(flatten);
+    }
+    case 23: {
+        HoleFillParams fill;
+        fill.hole = Region{RegionShape::Ellipse, c[0] - 12, c[1] - 12, 24, 24};
+        fill.patch_px = 16, fill.overlap_px = 4, fill.candidates = 48;
+        fill.seed = rng() % 1000;
+        fill.choices = {static_cast<int>(rng() % 3)};
+        return add(fill);
+    }
+    case 24: {
+        NoiseParams noise;
+        noise.fractal.seed = rng() % 1000, noise.fractal.amplitude_m = 40, noise.fractal.wavelength_px = 48;
+        noise.fractal.octaves = 4;
+        noise.region = Region{RegionShape::Rect, c[0] - 30, c[1] - 30, 60, 60};
+        noise.feather_px = 8;
+        return add(noise);
+    }
+    case 25: {
+        if (layers == 0) return soakEdit(s, rng, step - 5);  // a peak layer first
+        EditLayer changed = s.layers().layers[0];
+        if (auto* peak = std::get_if<PeakParams>(&changed.tool)) peak->height_m = 100 + 300 * unit(rng);
+        changed.name = "changed at " + std::to_string(step);
+        return check(s.replaceLayer(0, changed), "replaceLayer");
+    }
+    case 26:
+        if (layers < 2) return soakEdit(s, rng, step - 6);
+        return check(s.moveLayer(layers - 1, 0), "moveLayer");
+    case 27:
+        if (layers < 2) return soakEdit(s, rng, step - 7);
+        return check(s.mergeLayerDown(layers - 1), "mergeLayerDown");
+    case 28:
+        if (layers == 0) return soakEdit(s, rng, step - 8);
+        return check(s.removeLayer(static_cast<int>(rng() % layers)), "removeLayer");
+    case 29:
+        return check(s.setBaseWeights(BandWeights{1.0f, static_cast<float>(0.5 + unit(rng)), static_cast<float>(0.5 + unit(rng))}),
+                     "setBaseWeights");
+    case 30: {
+        if (s.curveIds().empty()) return randomEdit(s, rng, 4);
+        const EditId curve = s.curveIds().front();
+        const int widgets = static_cast<int>(s.curve(curve)->widgets.size());
+        if (widgets < 3) return randomEdit(s, rng, 6);
+        return check(s.removeWidget(curve, widgets / 2), "removeWidget");
+    }
+    default: {  // a previewed point drag, one undo step, as the editor's point tool makes it
+        if (s.pointIds().empty()) return randomEdit(s, rng, 0);
+        const EditId id = s.pointIds().front();
+        s.beginGesture();
+        s.setDragPreviewLevels(1);
+        s.deferLifts(true);
+        for (int k = 0; k < 4; ++k) {
+            const auto [x, y] = site(rng);
+            check(s.movePoint(id, x, y), "drag step");
+        }
+        check(s.liftDeferred(), "liftDeferred");
+        s.deferLifts(false);
+        s.setDragPreviewLevels(0);
+        s.endGesture();
+        return "drag";
+    }
+    }
+}
+
 Heightfield extentOf(Terrain& t) {
     auto h = t.heights(t.extent(), 0);
     EXPECT_TRUE(h) << h.message();
@@ -236,6 +363,164 @@ TEST(EditSession, FortyRandomEditsUndoRedoSaveReopen) {
     auto afresh = Terrain::fromProject(without);
     ASSERT_TRUE(afresh) << afresh.message();
     EXPECT_TRUE(sameBits(extentOf(**lost).heights, extentOf(**afresh).heights));
+}
+
+// Resident memory of this process, kB.
+size_t residentKb() {
+    long pages = 0, resident = 0;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+        std::fclose(f);
+    }
+    return static_cast<size_t>(resident) * static_cast<size_t>(::sysconf(_SC_PAGESIZE)) / 1024;
+}
+
+// Undoes every step the session holds, checking each against the heights recorded after the edits
+// (states[i]: after edit i, states[0] before the first), then redoes them all; returns how many
+// steps there were.
+int undoAllAndRedoAll(EditSession& s, const std::vector<std::vector<float>>& states, size_t first_kept) {
+    const size_t last = first_kept + states.size() - 1;  // the newest edit
+    int undone = 0;
+    while (s.canUndo()) {
+        auto r = s.undo();
+        EXPECT_TRUE(r) << r.message();
+        ++undone;
+        const size_t at = last - static_cast<size_t>(undone);
+        if (at < first_kept) {
+            ADD_FAILURE() << "more undo steps than edits kept";
+            return undone;
+        }
+        if (!sameBits(s.heights().heights, states[at - first_kept])) {
+            ADD_FAILURE() << "undo " << undone << " did not give the heights after edit " << at;
+            return undone;
+        }
+    }
+    const std::vector<float> oldest = s.heights().heights;
+    auto none = s.undo();  // nothing left: no change
+    EXPECT_TRUE(none && none->width == 0);
+    EXPECT_TRUE(sameBits(s.heights().heights, oldest));
+    for (int k = 1; k <= undone; ++k) {
+        auto r = s.redo();
+        EXPECT_TRUE(r) << r.message();
+        const size_t at = last - static_cast<size_t>(undone) + static_cast<size_t>(k);
+        if (!sameBits(s.heights().heights, states[at - first_kept])) {
+            ADD_FAILURE() << "redo " << k << " did not give the heights after edit " << at;
+            return undone;
+        }
+    }
+    EXPECT_FALSE(s.canRedo());
+    return undone;
+}
+
+// Saved, the heights reopen bit for bit through a new session and through Terrain.
+void expectSavedAndReopened(EditSession& s, const std::string& path) {
+    ASSERT_TRUE(s.save(path));
+    auto again = openSession(path);
+    ASSERT_TRUE(again);
+    EXPECT_TRUE(sameBits(again->heights().heights, s.heights().heights));
+    EXPECT_EQ(again->layers().layers.size(), s.layers().layers.size());
+    EXPECT_EQ(again->pointIds().size(), s.pointIds().size());
+    auto terrain = Terrain::open(path);
+    ASSERT_TRUE(terrain) << terrain.message();
+    EXPECT_TRUE(terrain.value()->usesEditedHeights());
+    EXPECT_TRUE(sameBits(extentOf(**terrain).heights, s.heights().heights));
+}
+
+TEST(EditSession, EveryToolUndoneToTheStartAndRedoneExactly) {
+    // Three rounds of every tool (soakEdit), within the longest undo history a session keeps.
+    const std::string dir = test::scratchDir("session_every_tool");
+    const std::string path = writeProject(dir, 21);
+    ASSERT_FALSE(path.empty());
+    EditSessionOptions options;
+    options.max_undo_steps = 256;
+    auto opened = EditSession::open(path, options);
+    ASSERT_TRUE(opened) << opened.message();
+    EditSession& s = **opened;
+    std::mt19937 rng(20261205);
+    std::vector<std::vector<float>> states{s.heights().heights};
+    std::set<std::string> tools;
+    for (int i = 0; i < 3 * kSoakKinds; ++i) {
+        tools.insert(soakEdit(s, rng, i));
+        states.push_back(s.heights().heights);
+        ASSERT_FALSE(HasFailure()) << "edit " << i;
+    }
+    EXPECT_GE(tools.size(), 30u);
+    EXPECT_EQ(undoAllAndRedoAll(s, states, 0), 3 * kSoakKinds);
+    expectSavedAndReopened(s, dir + "/edited.tsyn");
+}
+
+TEST(EditSession, UndoStopsAtItsByteBudgetWithTheOldestDropped) {
+    // EditSessionOptions::max_undo_bytes: a budget of about three point edits' journals keeps the
+    // newest steps that fit, exactly undoable, and never holds more (one step alone may exceed it).
+    const std::string dir = test::scratchDir("session_undo_budget");
+    const std::string path = writeProject(dir, 25);
+    ASSERT_FALSE(path.empty());
+    EditSessionOptions options;
+    auto probe = EditSession::open(path, options);
+    ASSERT_TRUE(probe) << probe.message();
+    std::mt19937 probe_rng(5);
+    randomEdit(**probe, probe_rng, 0);
+    const size_t one_step = (*probe)->undoBytes();
+    ASSERT_GT(one_step, 0u);
+    options.max_undo_bytes = 3 * one_step;
+    auto opened = EditSession::open(path, options);
+    ASSERT_TRUE(opened) << opened.message();
+    EditSession& s = **opened;
+    std::mt19937 rng(5);
+    std::vector<std::vector<float>> states{s.heights().heights};
+    for (int i = 0; i < 12; ++i) {
+        randomEdit(s, rng, i % 3);  // add, move and set points
+        states.push_back(s.heights().heights);
+        EXPECT_LE(s.undoBytes(), options.max_undo_bytes) << "after edit " << i;
+    }
+    const int kept = undoAllAndRedoAll(s, states, 0);
+    std::printf("budget %.1f MB (3 x the first step): %d of 12 steps kept\n", options.max_undo_bytes / 1e6, kept);
+    EXPECT_GE(kept, 1);
+    EXPECT_LT(kept, 12);
+    EXPECT_LE(s.undoBytes(), options.max_undo_bytes);
+}
+
+TEST(EditSessionSoak, TwoThousandEditsKeepTheNewestStepsExactlyAndMemoryPlateaus) {
+    // A day at the editor: 2,000 edits of every tool with the default undo history
+    // (EditSessionOptions::max_undo_steps and max_undo_bytes): undo goes back exactly that many steps, bit for bit,
+    // and stops (the oldest were dropped); redo comes back; the memory the history holds and the
+    // process's resident memory stop growing once the history is full.
+    constexpr int kEdits = 2000;
+    const std::string dir = test::scratchDir("session_soak");
+    const std::string path = writeProject(dir, 23);
+    ASSERT_FALSE(path.empty());
+    const EditSessionOptions options;
+    const size_t kept = static_cast<size_t>(options.max_undo_steps);
+    auto opened = EditSession::open(path, options);
+    ASSERT_TRUE(opened) << opened.message();
+    EditSession& s = **opened;
+    std::mt19937 rng(20261206);
+    std::vector<std::vector<float>> states{s.heights().heights};  // the newest kept + 1
+    size_t first_state = 0;  // edit index of states[0]
+    std::vector<size_t> undo_bytes, resident;  // every 100 edits
+    for (int i = 1; i <= kEdits; ++i) {
+        soakEdit(s, rng, i - 1);
+        ASSERT_FALSE(HasFailure()) << "edit " << i;
+        states.push_back(s.heights().heights);
+        if (states.size() > kept + 1) states.erase(states.begin()), ++first_state;
+        ASSERT_LE(s.undoBytes(), options.max_undo_bytes) << "edit " << i;
+        if (i % 100 == 0) {
+            undo_bytes.push_back(s.undoBytes());
+            resident.push_back(residentKb());
+            std::printf("edit %4d: undo history %.1f MB, resident %.1f MB, %zu layers, %zu points\n", i,
+                        undo_bytes.back() / 1e6, resident.back() / 1024.0, s.layers().layers.size(), s.pointIds().size());
+        }
+    }
+    EXPECT_EQ(undoAllAndRedoAll(s, states, first_state), options.max_undo_steps);
+    expectSavedAndReopened(s, dir + "/edited.tsyn");
+    // Plateaus: the second thousand edits hold no more than the first's once the history was full
+    // (the same tools in the same cycle, so the same sizes of steps).
+    const auto peak = [](const std::vector<size_t>& v, size_t from, size_t to) {
+        return *std::max_element(v.begin() + static_cast<long>(from), v.begin() + static_cast<long>(to));
+    };
+    const size_t full = (kept + 99) / 100;  // samples before the history is full
+    EXPECT_LE(peak(undo_bytes, 10, 20), peak(undo_bytes, full, 10) * 5 / 4);
+    EXPECT_LE(peak(resident, 10, 20), peak(resident, full, 10) * 11 / 10);
 }
 
 TEST(EditSession, ADragWithDeferredLiftsKeepsThemAndLiftsOnceAtTheEnd) {
@@ -585,6 +870,82 @@ TEST(EditSession, BadInputIsRefusedAndChangesNothing) {
     auto reopened = openSession(dir + "/new/deeper/edited.tsyn");
     ASSERT_TRUE(reopened);
     EXPECT_TRUE(sameBits(reopened->heights().heights, session->heights().heights));
+}
+
+TEST(EditSession, AFullDiskOrReadOnlyFolderFailsTheSaveNamingTheFileAndKeepsTheOldOnes) {
+    // The editor's save and autosave (save, saveIfDirty) on a small filesystem of our own: a tmpfs
+    // mounted in a private user and mount namespace, where this test runs itself again.
+    const std::string filter = "EditSession.AFullDiskOrReadOnlyFolderFailsTheSaveNamingTheFileAndKeepsTheOldOnes";
+    const char* mounted = std::getenv("TERRASYNTH_TEST_PRIVATE_TMPFS");
+    if (!mounted) {
+        if (std::system("unshare -rm sh -c 'mount -t tmpfs -o size=64k tmpfs /mnt' >/dev/null 2>&1") != 0)
+            GTEST_SKIP() << "cannot mount a private tmpfs here (unshare -rm refused: no user namespaces or mounts)";
+        const std::string small = test::scratchDir("session_disk_faults") + "/small";
+        ASSERT_EQ(::mkdir(small.c_str(), 0755), 0);
+        char self[4096] = {};
+        ASSERT_GT(::readlink("/proc/self/exe", self, sizeof self - 1), 0);
+        const std::string command = "unshare -rm sh -c \"mount -t tmpfs -o size=48m tmpfs '" + small +
+                                    "' && TERRASYNTH_TEST_PRIVATE_TMPFS='" + small + "' exec '" + self +
+                                    "' --gtest_filter=" + filter + "\"";
+        ASSERT_EQ(std::system(command.c_str()), 0) << "the run inside the private mount failed (its output is above)";
+        return;
+    }
+    const std::string small = mounted;
+    auto session = openSession(writeProject(test::scratchDir("session_disk_faults_project"), 27));
+    ASSERT_TRUE(session);
+    std::mt19937 rng(27);
+    randomEdit(*session, rng, 0);
+    const std::string saved = small + "/edited.tsyn", autosave = small + "/edited.autosave.tsyn";
+    ASSERT_TRUE(session->save(saved));
+    randomEdit(*session, rng, 16);
+    bool wrote = false;
+    ASSERT_TRUE(session->saveIfDirty(autosave, &wrote));
+    ASSERT_TRUE(wrote);
+    const std::vector<std::string> files = test::filesUnder(small);
+    std::vector<std::string> bytes;
+    for (const std::string& f : files) bytes.push_back(test::readFile(small + "/" + f));
+    auto intact = [&](const char* when) {
+        EXPECT_EQ(test::filesUnder(small).size(), files.size() + (std::string(when) == "full" ? 1 : 0)) << when << ": temporaries left";
+        for (size_t i = 0; i < files.size(); ++i) EXPECT_EQ(test::readFile(small + "/" + files[i]), bytes[i]) << when << ": " << files[i];
+    };
+    const std::vector<float> edited_heights = (randomEdit(*session, rng, 1), session->heights().heights);
+
+    // Full: both saves fail naming a file of theirs, the old files are as they were, the session
+    // stays dirty and edits on; with room again the same save works.
+    ASSERT_NE(std::system(("dd if=/dev/zero of='" + small + "/filler' bs=64k 2>/dev/null").c_str()), -1);
+    for (const std::string& path : {saved, autosave}) {
+        const Status full = session->save(path);
+        ASSERT_FALSE(full) << path;
+        EXPECT_NE(full.message().find(small + "/edited"), std::string::npos) << full.message();
+        EXPECT_NE(full.message().find("disk full"), std::string::npos) << full.message();
+        std::printf("full disk: %s\n", full.message().c_str());
+    }
+    EXPECT_FALSE(session->saveIfDirty(autosave));
+    EXPECT_TRUE(session->isDirty());
+    intact("full");
+    ASSERT_TRUE(session->undo());
+    ASSERT_TRUE(session->redo());
+    EXPECT_TRUE(sameBits(session->heights().heights, edited_heights));
+    ASSERT_EQ(::unlink((small + "/filler").c_str()), 0);
+    ASSERT_TRUE(session->save(saved));
+    auto reopened = openSession(saved);
+    ASSERT_TRUE(reopened);
+    EXPECT_TRUE(sameBits(reopened->heights().heights, edited_heights));
+
+    // Read-only: the same.
+    randomEdit(*session, rng, 10);
+    for (size_t i = 0; i < files.size(); ++i) bytes[i] = test::readFile(small + "/" + files[i]);
+    ASSERT_EQ(std::system(("mount -o remount,ro '" + small + "'").c_str()), 0);
+    const Status readonly = session->saveIfDirty(autosave);
+    ASSERT_FALSE(readonly);
+    EXPECT_NE(readonly.message().find(small + "/edited.autosave."), std::string::npos) << readonly.message();
+    EXPECT_NE(readonly.message().find("Read-only file system"), std::string::npos) << readonly.message();
+    std::printf("read-only folder: %s\n", readonly.message().c_str());
+    intact("read-only");
+    EXPECT_TRUE(session->isDirty());
+    const std::string elsewhere = test::scratchDir("session_disk_faults_elsewhere") + "/edited.tsyn";
+    ASSERT_TRUE(session->save(elsewhere));  // still usable: saved where there is room
+    EXPECT_FALSE(session->isDirty());
 }
 
 TEST(EditSession, ConstraintsFromAProjectRoundTripThroughTheSession) {

@@ -83,6 +83,7 @@ private:
     bool settle(int max_frames);
     bool waitForStartView();
     void checkHoles(osg::Image& image);
+    void sampleSeries(const plugin::TerrainStats& ts);
     void replayCameraPath();
     void finish();
     void say(const std::string& text) {
@@ -94,6 +95,7 @@ private:
     Project project_;
     Clock::time_point process_start_;
     RunStats stats_;
+    double next_sample_s_ = -1.0;  // wall time of the next series sample (RunStats::series)
     std::unique_ptr<host::HostWindow> host_;
     std::unique_ptr<TerrainLoader> loader_;
     std::optional<std::pair<float, float>> start_heights_;  // level-5 heights around the start
@@ -551,6 +553,7 @@ bool Session::flightFrame() {
     stats_.max_resident_tiles = std::max(stats_.max_resident_tiles, ts.resident_tiles);
     stats_.max_resident_bytes = std::max(stats_.max_resident_bytes, ts.resident_bytes);
     stats_.max_rss_mb = std::max(stats_.max_rss_mb, residentMb());
+    sampleSeries(ts);
     if (capture) checkHoles(*capture);
     if (screenshot_due && !o_.deterministic()) {
         ++stats_.screenshots;
@@ -598,6 +601,31 @@ void Session::replayCameraPath() {
         stats_.replay.add(host_->endFrame());
         stats_.replay_triangles.push_back(static_cast<double>(world_.node->stats().drawn_triangles));
     }
+}
+
+void Session::sampleSeries(const plugin::TerrainStats& ts) {
+    const double now = secondsSince(process_start_);
+    if (next_sample_s_ < 0.0) {  // the first flight frame: the interval starts here
+        next_sample_s_ = now + RunStats::kSeriesEvery;
+        stats_.series_first_frame = stats_.frames.frames().size() - 1;
+        stats_.tiles_cap_mb = world_.node->options().cache_mb;
+        if (world_.ground) stats_.ground_cap_blocks = world_.ground->maxBlocks();
+        return;
+    }
+    if (now < next_sample_s_) return;
+    next_sample_s_ += RunStats::kSeriesEvery;
+    const std::vector<double> all = stats_.frames.column(&host::FrameTiming::frame_ms);
+    const host::SeriesSummary interval =
+        host::summarize(std::vector<double>(all.begin() + static_cast<long>(stats_.series_first_frame), all.end()));
+    stats_.series_first_frame = all.size();
+    RunStats::Sample x;
+    x.t_s = now;
+    x.frames = interval.count;
+    x.frame_ms_median = interval.median, x.frame_ms_p95 = interval.p95;
+    x.rss_mb = residentMb();
+    x.tiles_resident = ts.resident_tiles, x.tiles_resident_bytes = ts.resident_bytes;
+    x.ground_blocks = world_.ground ? world_.ground->stats().cached : 0;
+    stats_.series.push_back(x);
 }
 
 void Session::finish() {

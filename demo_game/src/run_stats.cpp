@@ -72,6 +72,14 @@ Status writeStatsJson(const std::string& path, const GameOptions& o, const RunSt
         const double replay_p95 = host::summarize(s.replay.column(&host::FrameTiming::frame_ms)).p95;
         j["replay"]["flight_over_replay_p95"] = replay_p95 > 0.0 ? flight_p95 / replay_p95 : 0.0;
     }
+    j["caps"] = {{"tiles_mb", s.tiles_cap_mb}, {"ground_blocks", s.ground_cap_blocks}};
+    j["series_columns"] = {"t_s", "frames", "frame_ms_median", "frame_ms_p95", "rss_mb",
+                           "tiles_resident", "tiles_resident_mb", "ground_blocks"};
+    json series = json::array();
+    for (const RunStats::Sample& x : s.series)
+        series.push_back({x.t_s, x.frames, x.frame_ms_median, x.frame_ms_p95, x.rss_mb, x.tiles_resident,
+                          x.tiles_resident_bytes / 1048576.0, x.ground_blocks});
+    j["series"] = std::move(series);
     j["clean_exit"] = s.clean_exit;
     j["log_columns"] = {"t_s", "x_m", "y_m", "z_m", "ground_m", "above_ground_m"};
     j["log"] = s.log;

@@ -46,6 +46,20 @@ struct RunStats {
     double ground_fetch_ms_mean = 0.0, ground_fetch_ms_max = 0.0;
     size_t rings_placed = 0;
     bool clean_exit = false;
+    // A sample every kSeriesEvery seconds of wall time from the first flight frame on, for soak
+    // runs (scripts/soak_game.sh): how frame times, memory and the caches move over a long flight.
+    static constexpr double kSeriesEvery = 10.0;
+    struct Sample {
+        double t_s = 0.0;  // since the process started
+        size_t frames = 0;  // flight frames in the interval
+        double frame_ms_median = 0.0, frame_ms_p95 = 0.0;
+        double rss_mb = 0.0;
+        size_t tiles_resident = 0, tiles_resident_bytes = 0, ground_blocks = 0;
+    };
+    std::vector<Sample> series;
+    size_t series_first_frame = 0;  // first flight frame of the interval being sampled
+    double tiles_cap_mb = 0.0;      // the caches' caps, as configured
+    size_t ground_cap_blocks = 0;
 };
 
 Status writeStatsJson(const std::string& path, const GameOptions& options, const RunStats& stats);

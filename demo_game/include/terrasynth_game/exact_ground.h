@@ -75,6 +75,8 @@ public:
     // The block key of level-`level` sample (px, py).
     static BlockKey blockOf(int level, int64_t px, int64_t py);
     double metersPerPixel() const { return meters_per_pixel_; }
+    // The most blocks kept (least recently wanted dropped first).
+    size_t maxBlocks() const { return max_blocks_; }
 
     struct Stats {
         size_t cached = 0, fetched = 0, failed = 0;

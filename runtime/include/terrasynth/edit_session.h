@@ -31,6 +31,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -46,8 +47,13 @@ namespace terrasynth {
 struct EditSessionOptions {
     SynthesizerOptions synthesizer;
     DatabaseBuildOptions database;  // when the database cache must be (re)built
-    // Undo steps kept (oldest dropped first), 1..256.
+    // The undo history's bounds: at most max_undo_steps steps (1..256) holding at most
+    // max_undo_bytes of memory together (undoBytes()); beyond either the oldest steps are dropped
+    // first, and undo() then stops at the oldest kept. The newest step is kept whatever its size.
+    // A constraint edit's step holds the re-synthesized windows of every level, a re-seed's the
+    // whole extent's synthesis (docs/limits.md, "Long sessions").
     int max_undo_steps = 100;
+    size_t max_undo_bytes = size_t{1} << 30;
     // The project's database when the caller already has it (must be the one the project names);
     // null: the session opens it (loadOrBuild of the project's cache).
     std::shared_ptr<const ExemplarDatabase> preloaded_database;
@@ -173,7 +179,8 @@ public:
     // The window that changed, empty when there was nothing to undo or redo.
     Result<PixelWindow> undo();
     Result<PixelWindow> redo();
-    // Memory held by the undo and redo steps, bytes.
+    // Memory held by the undo and redo steps, bytes (bounded by EditSessionOptions::max_undo_bytes
+    // after each edit; redo steps come from undone ones, so they stay within it too).
     size_t undoBytes() const;
 
     // ---- Reading the world (any thread) ----

@@ -168,9 +168,17 @@ void EditSession::Impl::pushStep(EditStep step) {
         return;
     }
     undo.push_back(std::move(step));
+    redo.clear();
     const size_t limit = static_cast<size_t>(std::clamp(options.max_undo_steps, 1, 256));
     while (undo.size() > limit) undo.erase(undo.begin());
-    redo.clear();
+    // The byte budget: a re-synthesis of a large extent journals hundreds of MB, so the count alone
+    // would let a day of edits hold tens of GB. The newest step always stays undoable.
+    size_t held = 0;
+    for (const EditStep& kept : undo) held += kept.bytes();
+    while (undo.size() > 1 && held > options.max_undo_bytes) {
+        held -= undo.front().bytes();
+        undo.erase(undo.begin());
+    }
 }
 
 Result<PixelWindow> EditSession::Impl::finish(EditStep step) {
