@@ -123,7 +123,10 @@ TEST(EditorOptions, CommandLineAndAutosave) {
     const char* infinite_skirt[] = {"e", "w.tsyn", "--terrain-options", "skirt=inf"};
     EXPECT_NE(parseEditorOptions(4, infinite_skirt).message().find("skirt"), std::string::npos);
     // --stats is written at exit, so an unwritable one is refused up front (as the game does).
-    const std::string unwritable = test::scratchDir("editor_stats_target") + "/no/such/folder/stats.json";
+    // Missing folders are made at exit; a file where a folder should be cannot be.
+    const std::string stats_dir = test::scratchDir("editor_stats_target");
+    std::ofstream(stats_dir + "/in_the_way") << "a file";
+    const std::string unwritable = stats_dir + "/in_the_way/stats.json";
     const char* bad_stats[] = {"e", "w.tsyn", "--stats", unwritable.c_str()};
     const auto stats = parseEditorOptions(4, bad_stats);
     ASSERT_FALSE(stats);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <set>
 
@@ -292,8 +293,10 @@ TEST(ExportGltf, ErrorsNameTheProblem) {
     ASSERT_FALSE(bad_ext);
     EXPECT_NE(bad_ext.message().find(".glb or .gltf"), std::string::npos);
 
-    auto bad_dir = exportGltf(dir + "/missing/x.glb", heightSourceFromField(alaska()), options);
+    // A missing folder is made for the file; a file where the folder should be is named.
+    std::ofstream(dir + "/in_the_way") << "a file";
+    auto bad_dir = exportGltf(dir + "/in_the_way/x.glb", heightSourceFromField(alaska()), options);
     ASSERT_FALSE(bad_dir);
-    EXPECT_NE(bad_dir.message().find("missing/x.glb"), std::string::npos);
+    EXPECT_NE(bad_dir.message().find("in_the_way/x.glb"), std::string::npos) << bad_dir.message();
     EXPECT_EQ(fileSize(dir + "/x.glb"), 0u);  // nothing half-written
 }
