@@ -16,6 +16,10 @@ ctest --test-dir build --output-on-failure -j"${JOBS:-2}" --timeout 1200 -LE soa
 # under the sanitizers (SANITIZE_SCOPE=runtime) took CI to 89 of its 90 minutes (2026-12-02), and
 # the whole suite under them stays a script run before an issue is resolved: scripts/sanitize.sh.
 # Figures for the whole CI run are in docs/limits.md.
+# Then the threads suite under ThreadSanitizer (issue 54: the plugin's paging, workers and tile
+# store, the edit thread, the session's concurrent readers, the game's ground cache, the runtime's
+# workers; SANITIZE_SCOPE=threads in scripts/sanitize.sh), any report failing the run.
 if [ "${CI:-}" = true ]; then
   SANITIZE_SCOPE=input SANITIZE_EXCLUDE_LABEL="survey|costly|soak" bash scripts/sanitize.sh address
+  SANITIZE_SCOPE=threads SANITIZE_EXCLUDE_LABEL="survey|costly|soak" bash scripts/sanitize.sh thread
 fi
