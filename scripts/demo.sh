@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh demo   # the demo profile: no Blender, Chromium, Slurm, clang, valgrind or Node.js
-bash scripts/build.sh
+bash scripts/build.sh demo   # without the tests and benchmarks, which scripts/test.sh adds
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl_cache}"
 mkdir -p out "$POCL_CACHE_DIR"
 build/bin/terrasynth db build data/exemplars -o data/default.tsdb

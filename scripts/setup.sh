@@ -5,10 +5,11 @@
 #   bash scripts/setup.sh [demo|test]          install a profile (default: test)
 #   bash scripts/setup.sh --print [demo|test]  print its packages, one per line, install nothing
 #
-# demo: what building terrasynth and running its main job (scripts/demo.sh) needs: the compiler, the
-#       libraries every REQUIRED find_package of the build names (the test and benchmark frameworks
-#       too: the build configures them), and PoCL, the OpenCL device the synthesis runs on.
-# test: demo and everything the whole test suite (scripts/test.sh, CI) opens: Xvfb and Mesa for the
+# demo: what building terrasynth without its tests (scripts/build.sh demo) and running its main job
+#       (scripts/demo.sh) needs: the compiler, the libraries every REQUIRED find_package of that
+#       build names, and PoCL, the OpenCL device the synthesis runs on.
+# test: demo and everything the whole test suite (scripts/test.sh, CI) builds with and opens: the
+#       test and benchmark frameworks, Xvfb and Mesa for the
 #       windows, GDAL's tools, Python for the realism scripts and the Python module, clang and
 #       valgrind for the hardening scripts, a throwaway Slurm cluster, Blender and Chromium, and
 #       Node.js for the glTF validator and the CesiumJS client (test.sh runs `npm ci`).
@@ -24,10 +25,10 @@ demo_packages=(
   libgdal-dev
   # The plugin, the window host, the editor and the game (OpenGL comes with GLFW's package).
   libopenscenegraph-dev libglfw3-dev libimgui-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
 )
 test_packages=(
   "${demo_packages[@]}"
+  libgtest-dev libgmock-dev libbenchmark-dev
   git opencl-clhpp-headers clinfo
   # osgviewer/osgconv (the README's plugin commands), windows without a display, GL in software.
   openscenegraph xvfb xauth libgl1-mesa-dri
