@@ -38,6 +38,8 @@ test_packages=(
   # The realism instrument in ../shared/realism (scripts/realism/realism_survey.py, closeup_sheet.py,
   # hillshade_pairs.py): its gate needs scipy, its discriminator scikit-learn.
   python3-scipy python3-sklearn
+  # The soak scripts' plots (scripts/soak_game.sh).
+  python3-matplotlib
   # The Python module (python/) and its pytest suite.
   python3-pybind11 python3-dev python3-pytest
   # The sharded-bake test starts its own throwaway cluster (scripts/slurm-local.sh).

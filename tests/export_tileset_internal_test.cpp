@@ -19,6 +19,7 @@
 #include "export/tileset_implicit.h"
 #include "export/tileset_plan.h"
 #include "terrasynth/file_transaction.h"
+#include "terrasynth/gltf_export.h"
 #include "terrasynth/tileset_bake.h"
 #include "temporary_names.h"
 #include "test_support.h"
@@ -305,4 +306,94 @@ TEST(TilesetBake, ImplicitTilesetWritesSubtreesWithTheTreesAvailability) {
     EXPECT_EQ(j["tileAvailability"]["availableCount"].get<int>(), availableTiles(tree, 0, std::min(levels, tree.depth())));
     // The root box's geometric error bounds every tile's measured error once halved per level.
     EXPECT_GT(tileset["root"]["geometricError"].get<double>(), 0.0);
+}
+
+TEST(TilesetBake, ExportsAndBakesOnAFullDiskOrReadOnlyFolderFailNamingTheFileAndKeepTheOldOnes) {
+    // glTF, heightmap and mask exports and a bake with its merge, as the CLI, the editor and the
+    // Python module run them, on a small filesystem of our own (issue 54).
+    TERRASYNTH_ON_A_PRIVATE_TMPFS(small, "TilesetBake.ExportsAndBakesOnAFullDiskOrReadOnlyFolderFailNamingTheFileAndKeepTheOldOnes",
+                                  "tileset_disk_faults", "24m");
+    const Heightfield field = test::crop(test::loadExemplarField("orom_alaska"), 0, 0, 129, 129);
+    std::vector<uint8_t> types;
+    for (float h : field.heights) types.push_back(h > 2000.0f ? 1 : 0);
+    const std::vector<std::string> type_names = {"low", "high"};
+    GltfExportOptions gltf;
+    gltf.region = {0, 0, field.width, field.height};
+    gltf.tile_size = 32;
+    const std::string bake = small + "/bake";
+    BakeOptions o = smallBake();
+    o.heightmaps = HeightmapFormat::GeoTiff;
+    auto write_everything = [&]() -> Status {
+        if (auto g = exportGltf(small + "/terrain.glb", heightSourceFromField(field), gltf); !g) return g.status();
+        if (Status h = exportHeightmap(small + "/terrain.tif", field); !h) return h;
+        if (auto m = writeTypeMasks(small + "/mask_", field.width, field.height, types, type_names); !m) return m.status();
+        if (Status p = prepareBakeFolder(bake, o); !p) return p;
+        if (auto b = bakeTiles(bake, demSource(), o); !b) return b.status();
+        if (auto m = mergeTileset(bake); !m) return m.status();
+        return Status::ok();
+    };
+    const Status wrote = write_everything();
+    ASSERT_TRUE(wrote) << wrote.message();
+    const auto before = folderContents(small);
+    ASSERT_GT(before.size(), 20u);
+    // What the bake wrote, as a fresh bake elsewhere writes it, to compare a re-bake against.
+    const std::string tile = bake + "/" + BakeTree(o).tilePath(unitTiles(BakeTree(o), orderedUnits(BakeTree(o)).back()).back(), ".glb");
+    ASSERT_TRUE(fs::exists(tile));
+
+    // Each writer again, one at a time, with the disk full or the folder read-only: the error names
+    // the file and says why, the files under their final names are the old ones, nothing else is left.
+    auto each_writer_fails = [&](const char* why) {
+        const auto g = exportGltf(small + "/terrain.glb", heightSourceFromField(field), gltf);
+        ASSERT_FALSE(g);
+        EXPECT_NE(g.message().find(small + "/terrain"), std::string::npos) << g.message();
+        EXPECT_NE(g.message().find(why), std::string::npos) << g.message();
+        const Status h = exportHeightmap(small + "/terrain.tif", field);
+        ASSERT_FALSE(h);
+        EXPECT_NE(h.message().find(small + "/terrain.tif"), std::string::npos) << h.message();
+        const auto m = writeTypeMasks(small + "/mask_", field.width, field.height, types, type_names);
+        ASSERT_FALSE(m);
+        EXPECT_NE(m.message().find(small + "/mask_"), std::string::npos) << m.message();
+        // A bake with a tile to write (one removed where the folder can still be written) and a new one.
+        const Status fresh = prepareBakeFolder(small + "/another_bake", o);
+        ASSERT_FALSE(fresh);
+        EXPECT_NE(fresh.message().find(small + "/another_bake"), std::string::npos) << fresh.message();
+        EXPECT_FALSE(fs::exists(small + "/another_bake"));
+        std::printf("%s: %s\n  %s\n  %s\n  %s\n", why, g.message().c_str(), h.message().c_str(), m.message().c_str(),
+                    fresh.message().c_str());
+    };
+    auto intact = [&](const char* when, size_t extra) {
+        const auto now = folderContents(small);
+        EXPECT_EQ(now.size(), before.size() + extra) << when << ": temporaries left or files gone";
+        for (const auto& [name, bytes] : before) {
+            const auto it = now.find(name);
+            ASSERT_NE(it, now.end()) << when << ": " << name << " is gone";
+            EXPECT_TRUE(it->second == bytes) << when << ": " << name << " changed";
+        }
+    };
+
+    // A tile gone missing (before the disk fills: its bytes would make room for it again).
+    const std::string removed_bytes = before.at(fs::relative(tile, small).string());
+    ASSERT_TRUE(fs::remove(tile));
+    ASSERT_NE(std::system(("dd if=/dev/zero of='" + small + "/filler' bs=64k 2>/dev/null").c_str()), -1);
+    each_writer_fails("disk full");
+    // The re-bake cannot write the tile back; the rest stays as it was.
+    auto rebake = bakeTiles(bake, demSource(), o);
+    ASSERT_FALSE(rebake);
+    // Named by the tile's files (its .glb or the heightmap beside it, staged together).
+    EXPECT_NE(rebake.message().find(fs::path(tile).replace_extension(".").string()), std::string::npos)
+        << rebake.message();
+    EXPECT_NE(rebake.message().find("disk full"), std::string::npos) << rebake.message();
+    std::printf("disk full, re-bake: %s\n", rebake.message().c_str());
+    EXPECT_FALSE(fs::exists(tile));
+    // With room again the same calls succeed, and the re-bake writes the tile it lost, bit for bit.
+    ASSERT_EQ(::unlink((small + "/filler").c_str()), 0);
+    auto again = bakeTiles(bake, demSource(), o);
+    ASSERT_TRUE(again) << again.message();
+    EXPECT_EQ(again->tiles_baked, 1);
+    EXPECT_TRUE(test::readFile(tile) == removed_bytes);
+    intact("full", 0);  // the tile back, nothing else changed, no temporaries
+
+    ASSERT_EQ(std::system(("mount -o remount,ro '" + small + "'").c_str()), 0);
+    each_writer_fails("Read-only file system");
+    intact("read-only", 0);
 }

@@ -161,7 +161,9 @@ TEST(PluginPaging, MemoryStaysBoundedOnALongFlight) {
         fx.view->frame(eye, center);
         // Every 2 km the view converges (as long as the workers take), so the flight fills the cache
         // however loaded the machine is; in between it flies over whatever is still loading.
-        if (f % 20 == 0) ASSERT_GE(fx.settle(eye, center), 0);
+        if (f % 20 == 0) {
+            ASSERT_GE(fx.settle(eye, center), 0);
+        }
         const TerrainStats st = fx.node->stats();
         max_resident = std::max(max_resident, st.resident_bytes);
         if (f == 120) rss_after_warmup = residentKb();
@@ -279,7 +281,9 @@ TEST(PluginPaging, ContinuousEditsStillReachTheScreen) {
         std::shared_ptr<std::atomic<bool>> open;
         if (held) *(open = gate.open) = false;
         return editedSource(fx.source, [edit, raise, open](const PixelWindow& w, int level, Heightfield& h) {
-            if (open) EXPECT_TRUE(test::waitUntil([&] { return open->load(); })) << "the gate stayed shut";
+            if (open) {
+                EXPECT_TRUE(test::waitUntil([&] { return open->load(); })) << "the gate stayed shut";
+            }
             raiseBlock(edit, raise, w, level, h);
         });
     };

@@ -875,22 +875,8 @@ TEST(EditSession, BadInputIsRefusedAndChangesNothing) {
 TEST(EditSession, AFullDiskOrReadOnlyFolderFailsTheSaveNamingTheFileAndKeepsTheOldOnes) {
     // The editor's save and autosave (save, saveIfDirty) on a small filesystem of our own: a tmpfs
     // mounted in a private user and mount namespace, where this test runs itself again.
-    const std::string filter = "EditSession.AFullDiskOrReadOnlyFolderFailsTheSaveNamingTheFileAndKeepsTheOldOnes";
-    const char* mounted = std::getenv("TERRASYNTH_TEST_PRIVATE_TMPFS");
-    if (!mounted) {
-        if (std::system("unshare -rm sh -c 'mount -t tmpfs -o size=64k tmpfs /mnt' >/dev/null 2>&1") != 0)
-            GTEST_SKIP() << "cannot mount a private tmpfs here (unshare -rm refused: no user namespaces or mounts)";
-        const std::string small = test::scratchDir("session_disk_faults") + "/small";
-        ASSERT_EQ(::mkdir(small.c_str(), 0755), 0);
-        char self[4096] = {};
-        ASSERT_GT(::readlink("/proc/self/exe", self, sizeof self - 1), 0);
-        const std::string command = "unshare -rm sh -c \"mount -t tmpfs -o size=48m tmpfs '" + small +
-                                    "' && TERRASYNTH_TEST_PRIVATE_TMPFS='" + small + "' exec '" + self +
-                                    "' --gtest_filter=" + filter + "\"";
-        ASSERT_EQ(std::system(command.c_str()), 0) << "the run inside the private mount failed (its output is above)";
-        return;
-    }
-    const std::string small = mounted;
+    TERRASYNTH_ON_A_PRIVATE_TMPFS(small, "EditSession.AFullDiskOrReadOnlyFolderFailsTheSaveNamingTheFileAndKeepsTheOldOnes",
+                                  "session_disk_faults", "48m");
     auto session = openSession(writeProject(test::scratchDir("session_disk_faults_project"), 27));
     ASSERT_TRUE(session);
     std::mt19937 rng(27);

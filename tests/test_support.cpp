@@ -95,6 +95,33 @@ int rerunUnderXvfbUnlessDisplay(const std::string& gtest_filter) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
+std::string rerunOnAPrivateTmpfs(const std::string& gtest_filter, const std::string& scratch_name,
+                                 const std::string& size, int* rc) {
+    *rc = 0;
+    if (const char* mounted = std::getenv("TERRASYNTH_TEST_PRIVATE_TMPFS")) return mounted;
+    if (std::system("unshare -rm sh -c 'mount -t tmpfs -o size=64k tmpfs /mnt' >/dev/null 2>&1") != 0) {
+        *rc = kNoPrivateMount;
+        return "";
+    }
+    const std::string small = scratchDir(scratch_name) + "/small";
+    if (::mkdir(small.c_str(), 0755) != 0) {
+        ADD_FAILURE() << "cannot make " << small;
+        *rc = 1;
+        return "";
+    }
+    char self[4096] = {};
+    if (::readlink("/proc/self/exe", self, sizeof self - 1) <= 0) {
+        *rc = 1;
+        return "";
+    }
+    const std::string command = "unshare -rm sh -c \"mount -t tmpfs -o size=" + size + " tmpfs '" + small +
+                                "' && TERRASYNTH_TEST_PRIVATE_TMPFS='" + small + "' exec '" + self +
+                                "' --gtest_filter=" + gtest_filter + "\"";
+    const int status = std::system(command.c_str());
+    *rc = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+    return "";
+}
+
 Heightfield crop(const Heightfield& field, int x0, int y0, int w, int h) {
     Heightfield out(w, h, field.meters_per_pixel_x);
     out.meters_per_pixel_y = field.meters_per_pixel_y;

@@ -50,6 +50,26 @@ int rerunUnderXvfbUnlessDisplay(const std::string& gtest_filter);
             return;                                                                             \
         }                                                                                       \
     } while (0)
+// Tests of a full or read-only disk, on a small filesystem of their own: the running test binary runs
+// itself again, filtered to `gtest_filter`, in a private user and mount namespace (unshare -rm) with
+// a tmpfs of `size` (mount's size=, e.g. "48m") on a fresh scratch folder `scratch_name`/small.
+// Inside that run this returns the folder; outside it returns "" with the run's exit code in *rc, or
+// kNoPrivateMount where user namespaces or mounts are refused.
+constexpr int kNoPrivateMount = -1002;
+std::string rerunOnAPrivateTmpfs(const std::string& gtest_filter, const std::string& scratch_name,
+                                 const std::string& size, int* rc);
+// At the top of a TEST: `folder` is the private tmpfs's folder here, or the test returns after the
+// run inside it (checking its exit code; skipped where no private mount can be made).
+#define TERRASYNTH_ON_A_PRIVATE_TMPFS(folder, gtest_filter, scratch_name, size)                        \
+    int folder##_rc = 0;                                                                              \
+    const std::string folder = ::terrasynth::test::rerunOnAPrivateTmpfs(gtest_filter, scratch_name, size, \
+                                                                        &folder##_rc);                \
+    if (folder.empty()) {                                                                             \
+        if (folder##_rc == ::terrasynth::test::kNoPrivateMount)                                       \
+            GTEST_SKIP() << "cannot mount a private tmpfs here (unshare -rm refused)";                \
+        ASSERT_EQ(folder##_rc, 0) << "the run inside the private mount failed (its output is above)"; \
+        return;                                                                                       \
+    }
 // "xvfb-run -a -s '-screen 0 1280x720x24' " to prefix a command that opens a window, or "" when
 // DISPLAY is already set.
 std::string xvfbPrefix();

@@ -373,13 +373,21 @@ void EditorApp::save(const std::string& path) {
 }
 
 void EditorApp::autosaveTick() {
-    // At most once per interval, and only in a pause: a save of a 1024^2 extent writes ~30 MB on the
-    // edit thread, and an edit submitted meanwhile would wait for it.
-    if (gestures_open_ > 0 || autosave_queued_ || tool_dragging_) return;
+    // At most once per interval, and in a pause: a save of a 1024^2 extent writes ~30 MB on the edit
+    // thread, and an edit submitted meanwhile would wait for it. When input never pauses (a long
+    // sculpting run), an edit older than autosave_max_delay_s is saved between two gestures anyway,
+    // so a crash loses at most that much work.
     const double now = steadySeconds();
+    if (worker_->editCount() == autosaved_count_) {
+        unsaved_since_s_ = -1.0;
+        return;
+    }
+    if (unsaved_since_s_ < 0.0) unsaved_since_s_ = now;
+    if (gestures_open_ > 0 || autosave_queued_ || tool_dragging_ || !worker_->idle()) return;
     if (now - last_autosave_s_ < options_.autosave_interval_s) return;
-    if (now - last_input_s_ < options_.autosave_interval_s || !worker_->idle()) return;
-    if (worker_->editCount() == autosaved_count_) return;
+    const bool paused = now - last_input_s_ >= options_.autosave_interval_s;
+    const bool overdue = now - unsaved_since_s_ >= options_.autosave_max_delay_s;
+    if (!paused && !overdue) return;
     autosave_queued_ = true;
     auto saved_count = std::make_shared<uint64_t>(0);
     EditRequest r;
@@ -394,6 +402,7 @@ void EditorApp::autosaveTick() {
         last_autosave_s_ = steadySeconds();
         if (!result.status) return;
         autosaved_count_ = *saved_count;
+        unsaved_since_s_ = -1.0;  // edits made during the save start the clock again at the next tick
         autosave_ms_.push_back(result.run_ms);
         std::printf("terrasynth_editor: autosaved %s (edit %llu)\n", autosave_path_.c_str(),
                     static_cast<unsigned long long>(autosaved_count_));

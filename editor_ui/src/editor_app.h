@@ -168,6 +168,7 @@ private:
     double last_autosave_s_ = -1e9;
     double last_input_s_ = -1e9;
     uint64_t autosaved_count_ = 0;
+    double unsaved_since_s_ = -1.0;  // when an edit the autosave lacks was first seen; -1: none
     bool autosave_queued_ = false;
     std::vector<double> autosave_ms_;
     bool open_failed_reported_ = false;

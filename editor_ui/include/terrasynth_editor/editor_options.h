@@ -27,8 +27,11 @@ struct EditorOptions {
     // The terrain node's settings, in the plugin's option syntax (terrasynth_plugin/plugin_options.h),
     // over the editor's defaults (kTerrainDefaults).
     std::string terrain_options;
-    // Autosaves are at least this far apart, and wait for this long without input.
+    // Autosaves are at least this far apart, and wait for this long without input...
     double autosave_interval_s = 1.0;
+    // ...but no edit waits longer than this for one: while input goes on without such a pause, the
+    // autosave is written between two gestures (what kill -9 can lose: the edits of this span).
+    double autosave_max_delay_s = 10.0;
     // A drag's intermediate steps synthesize their finest levels as a preview (upsampled, not
     // corrected: EditSession::setDragPreviewLevels); the release re-synthesizes in full. 0..2.
     int drag_preview_levels = 1;

@@ -2,7 +2,9 @@
 // straight to disk so a 1 GB export is never copied whole in memory.
 #include <tiny_gltf.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -19,13 +21,15 @@ namespace {
 // all of them (a full disk fails late, inside a buffered write).
 class StreamedFile {
 public:
-    explicit StreamedFile(const std::string& temp) : file_(std::fopen(temp.c_str(), "wb")) {}
+    explicit StreamedFile(const std::string& temp)
+        : file_(std::fopen(temp.c_str(), "wb")), open_error_(file_ ? 0 : errno) {}
     ~StreamedFile() {
         if (file_) std::fclose(file_);
     }
     StreamedFile(const StreamedFile&) = delete;
     StreamedFile& operator=(const StreamedFile&) = delete;
     bool isOpen() const { return file_ != nullptr; }
+    std::string openError() const { return std::strerror(open_error_); }
     void write(const void* data, size_t size) {
         if (ok_ && size > 0) ok_ = std::fwrite(data, 1, size, file_) == size;
     }
@@ -43,6 +47,7 @@ public:
 
 private:
     std::FILE* file_;
+    int open_error_;
     bool ok_ = true;
 };
 
@@ -66,7 +71,7 @@ Status stageStreamed(FileTransaction& transaction, const std::string& path,
                      const std::function<void(StreamedFile&)>& body) {
     return transaction.stageWith(path, [&](const std::string& temp) {
         StreamedFile file(temp);
-        if (!file.isOpen()) return Status::error(path + ": cannot create the file");
+        if (!file.isOpen()) return Status::error(path + ": cannot create a temporary file beside it: " + file.openError());
         body(file);
         return file.finish(path);
     });
