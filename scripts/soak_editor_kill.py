@@ -189,7 +189,10 @@ def main():
             kill = {"round": round_index, "ran_s": round(t_kill - first_edit, 2), "held_at_start": held,
                     "edits_made": made, "points_recovered": saved, "edits_lost": max(0, made - saved),
                     "oldest_lost_edit_age_s": round(oldest_lost_s, 2),
-                    "autosaves": sum("autosaved" in line for _, line in e.lines)}
+                    "autosaves": sum("autosaved" in line for _, line in e.lines),
+                    # How long the editor had printed nothing when it was killed (an edit, a settle
+                    # or an autosave that did not end).
+                    "silent_s": round(t_kill - max(t for t, _ in e.lines), 2)}
             kills.append(kill)
             print(json.dumps(kill), flush=True)
             # The edit in flight at the kill may have reached the autosave before its echo did.
