@@ -36,9 +36,9 @@ AERIAL_START = "settle\nview aerial 512 512 60000\nsettle\n"  # as tests/editor_
 
 
 def grid_positions():
-    """Screen positions on the terrain (1280x720, the middle 30 km of a 60 km aerial view), 40 px
-    apart so that a click never lands on an earlier point's handle."""
-    return [(x, y) for y in range(100, 640, 40) for x in range(380, 920, 40)]
+    """Screen positions on the terrain (1280x720, the middle 30 km of a 60 km aerial view), 30 px
+    apart so that a click never lands on an earlier point's handle (kHandlePx, 12 px): 324."""
+    return [(x, y) for y in range(100, 640, 30) for x in range(380, 920, 30)]
 
 
 def project_points(path):
@@ -149,7 +149,10 @@ def main():
     try:
         for round_index in range(a.kills + 1):
             held = len(project_points(autosave))
-            last = round_index == a.kills
+            # The last round reads back and quits; so does a session that has used every position.
+            last = round_index == a.kills or held >= len(positions)
+            if held >= len(positions):
+                print(f"soak_editor_kill: every position holds a point after {len(kills)} kills", flush=True)
             script = os.path.join(out, f"round{round_index}.script")
             with open(script, "w") as f:
                 f.write(AERIAL_START)

@@ -19,10 +19,17 @@ OverlayPainter::OverlayPainter(const EditorActions& editor, std::map<std::string
     sample_px_ = std::max(2.0, std::max(e.width, e.height) / 128.0);
 }
 
+bool OverlayPainter::room(int vertices) {
+    // Below 2^16 with a margin for what the tools draw after (their own overlays call no room()).
+    constexpr unsigned kVertexBudget = 60000;
+    return draw_list_->_VtxCurrentIdx + static_cast<unsigned>(vertices) < kVertexBudget;
+}
+
 void OverlayPainter::drape(const Polyline& line, bool closed, ImU32 colour, float thickness) {
     std::vector<ImVec2> run;
     auto flush = [&] {
-        if (run.size() > 1) draw_list_->AddPolyline(run.data(), static_cast<int>(run.size()), colour, 0, thickness);
+        // An anti-aliased thick polyline takes up to 4 vertices a point.
+        if (run.size() > 1 && room(4 * static_cast<int>(run.size()) + 8)) draw_list_->AddPolyline(run.data(), static_cast<int>(run.size()), colour, 0, thickness);
         run.clear();
     };
     const size_t n = line.size();
@@ -55,20 +62,22 @@ void OverlayPainter::circle(double cx, double cy, double r, ImU32 colour, float 
 void OverlayPainter::handle(double px, double py, ImU32 colour, float radius, const std::string& item) {
     if (const auto s = editor_.screenOfPixel(px, py)) {
         const ImVec2 c(static_cast<float>(s->x()), static_cast<float>(s->y()));
+        if (!item.empty()) items_[item] = ImVec4(c.x - radius, c.y - radius, c.x + radius, c.y + radius);
+        if (!room(512)) return;  // a filled circle and its ring, at most 64 segments each
         draw_list_->AddCircleFilled(c, radius, colour);
         draw_list_->AddCircle(c, radius + 1.0f, IM_COL32(0, 0, 0, 200), 0, 1.5f);
-        if (!item.empty()) items_[item] = ImVec4(c.x - radius, c.y - radius, c.x + radius, c.y + radius);
     }
 }
 
 void OverlayPainter::ring(double px, double py, float radius, ImU32 colour, float thickness) {
-    if (const auto s = editor_.screenOfPixel(px, py))
+    if (const auto s = editor_.screenOfPixel(px, py); s && room(256))
         draw_list_->AddCircle(ImVec2(float(s->x()), float(s->y())), radius, colour, 0, thickness);
 }
 
 void OverlayPainter::screenPolyline(const std::vector<osg::Vec2d>& points, ImU32 colour, float thickness) {
     std::vector<ImVec2> pts;
     for (const osg::Vec2d& p : points) pts.push_back(ImVec2(float(p.x()), float(p.y())));
+    if (!room(4 * static_cast<int>(pts.size()) + 8)) return;
     draw_list_->AddPolyline(pts.data(), static_cast<int>(pts.size()), colour, 0, thickness);
 }
 

@@ -43,6 +43,11 @@ public:
     void screenPolyline(const std::vector<osg::Vec2d>& points, ImU32 colour, float thickness);
 
 private:
+    // Whether `vertices` more fit the draw list: Debian's Dear ImGui indexes vertices in 16 bits, and
+    // its OpenGL2 backend cannot split a list (no RendererHasVtxOffset), so past 65,536 vertices
+    // ImGui aborts the editor (a project of ~250 points did). What does not fit is left undrawn.
+    bool room(int vertices);
+
     const EditorActions& editor_;
     std::map<std::string, ImVec4>& items_;
     ImDrawList* draw_list_;
