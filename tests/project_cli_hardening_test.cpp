@@ -120,10 +120,8 @@ TEST_F(CliHardening, ASecondOutputThatCannotBeWrittenLeavesTheFirstAsItWas) {
 
 // Full disks and read-only folders need a small filesystem of our own: a tmpfs mounted inside a
 // private user and mount namespace (nothing is mounted for anyone else).
-bool canMountPrivately() { return std::system("unshare -rm sh -c 'mount -t tmpfs -o size=64k tmpfs /mnt' >/dev/null 2>&1") == 0; }
-
 TEST_F(CliHardening, AFullDiskOrReadOnlyFolderLeavesThePreviousPairIntact) {
-    if (!canMountPrivately())
+    if (!test::canMountPrivately())
         GTEST_SKIP() << "cannot mount a private tmpfs here (unshare -rm refused: no user namespaces); "
                         "the rename-failure cases of ASecondOutputThatCannotBeWritten... still ran";
     // The previous pair: a real heightmap and sidecar, kept outside the small filesystem too.

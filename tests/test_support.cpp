@@ -95,11 +95,15 @@ int rerunUnderXvfbUnlessDisplay(const std::string& gtest_filter) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
+bool canMountPrivately() {
+    return std::system("unshare -rm sh -c 'mount -t tmpfs -o size=64k tmpfs /mnt' >/dev/null 2>&1") == 0;
+}
+
 std::string rerunOnAPrivateTmpfs(const std::string& gtest_filter, const std::string& scratch_name,
                                  const std::string& size, int* rc) {
     *rc = 0;
     if (const char* mounted = std::getenv("TERRASYNTH_TEST_PRIVATE_TMPFS")) return mounted;
-    if (std::system("unshare -rm sh -c 'mount -t tmpfs -o size=64k tmpfs /mnt' >/dev/null 2>&1") != 0) {
+    if (!canMountPrivately()) {
         *rc = kNoPrivateMount;
         return "";
     }

@@ -56,6 +56,8 @@ int rerunUnderXvfbUnlessDisplay(const std::string& gtest_filter);
 // Inside that run this returns the folder; outside it returns "" with the run's exit code in *rc, or
 // kNoPrivateMount where user namespaces or mounts are refused.
 constexpr int kNoPrivateMount = -1002;
+// Whether this machine lets a test mount a tmpfs in a private user and mount namespace.
+bool canMountPrivately();
 std::string rerunOnAPrivateTmpfs(const std::string& gtest_filter, const std::string& scratch_name,
                                  const std::string& size, int* rc);
 // At the top of a TEST: `folder` is the private tmpfs's folder here, or the test returns after the
