@@ -157,7 +157,7 @@ def main():
             with open(script, "w") as f:
                 f.write(AERIAL_START)
                 if last:  # after the last kill: read back and quit
-                    f.write(f"heights {out}/recovered.f32\necho POINTS-READ\nquit\n")
+                    f.write(f"heights {out}/recovered.f32\nquit\n")
                 else:
                     f.write("tool point\n")
                     for i in range(held, len(positions)):
@@ -183,7 +183,11 @@ def main():
                 failures.append(f"round {round_index}: the autosave was not recovered")
             time.sleep(rng.uniform(0.0, a.longest_round_s))
             t_kill = time.monotonic()
+            ended_by_itself = e.proc.poll()  # a crash before the kill (an abort, a signal)
             e.kill()
+            if ended_by_itself is not None:
+                failures.append(f"round {round_index}: the editor ended by itself (status {ended_by_itself}) "
+                                f"before the kill; see round{round_index}.log")
             done = {int(m.group(1)): t for t, line in e.lines if (m := re.match(r"^EDIT (\d+)$", line))}
             made = max(done) if done else held
             points = project_points(autosave)
