@@ -2,6 +2,7 @@
 // started tasks always finish.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <mutex>
@@ -65,6 +66,38 @@ TEST(PluginPool, UsesAllThreadsAndFinishesStartedWork) {
     }  // the destructor waits for the started task
     EXPECT_EQ(peak, 2);
     EXPECT_EQ(done, 9);
+}
+
+// runOnEveryThread runs once on each worker (the preload, and each worker's synthesizer made before
+// the first frame), also on a worker that is busy with a task when it is called, and again per call.
+TEST(PluginPool, RunsOnEveryThreadOnceAlsoBesideABusyWorker) {
+    WorkerPool pool(3);
+    std::atomic<bool> busy{false}, release{false};
+    pool.push({0.0, [&] {
+                   busy = true;
+                   test::waitUntil([&] { return release.load(); });
+               }});
+    ASSERT_TRUE(test::waitUntil([&] { return busy.load(); }));
+    std::mutex m;
+    std::vector<std::thread::id> ran;
+    std::thread caller([&] {
+        pool.runOnEveryThread([&] {
+            std::lock_guard<std::mutex> lock(m);
+            ran.push_back(std::this_thread::get_id());
+        });
+    });
+    // The two idle workers run it; the call returns only once the busy one has too.
+    EXPECT_TRUE(test::waitUntil([&] { std::lock_guard<std::mutex> lock(m); return ran.size() == 2; }));
+    release = true;
+    caller.join();
+    ASSERT_EQ(ran.size(), 3u);
+    std::sort(ran.begin(), ran.end());
+    EXPECT_EQ(std::unique(ran.begin(), ran.end()), ran.end()) << "a worker ran it twice";
+    EXPECT_EQ(std::count(ran.begin(), ran.end(), std::this_thread::get_id()), 0) << "the caller ran it";
+    std::atomic<int> second{0};
+    pool.runOnEveryThread([&] { ++second; });
+    EXPECT_EQ(second, 3);
+    pool.waitIdle();
 }
 
 }  // namespace

@@ -259,6 +259,8 @@ Status TerrainNode::preload(const PixelWindow& region, int level) {
     return Status::ok();
 }
 
+void TerrainNode::runOnEveryWorker(const std::function<void()>& fn) const { loader_->runOnEveryThread(fn); }
+
 TerrainStats TerrainNode::stats() const {
     std::lock_guard<std::mutex> lock(mutex_);
     TerrainStats s = stats_;

@@ -4,7 +4,6 @@
 #include <atomic>
 #include <iterator>
 #include <utility>
-#include <thread>
 
 namespace terrasynth::plugin {
 
@@ -90,15 +89,13 @@ TileLoader::Totals TileLoader::totals() const {
 
 std::vector<TileBuild> TileLoader::buildNow(const std::vector<TileKey>& keys, const HeightSource& source,
                                             const TypeSource& types) const {
-    // Own short-lived threads: the pool's queue belongs to the frame loop.
+    // On the workers themselves, so the synthesizers the preload makes are the ones they build
+    // tiles with afterwards (short-lived threads each made one and left it behind).
     std::vector<TileBuild> builds(keys.size());
     std::atomic<size_t> next{0};
-    auto work = [&] {
+    pool_->runOnEveryThread([&] {
         for (size_t i = next++; i < keys.size(); i = next++) builds[i] = buildTile(source, keys[i], settings_, nullptr, &types);
-    };
-    std::vector<std::thread> threads;
-    for (int t = 0; t < threadCount(); ++t) threads.emplace_back(work);
-    for (auto& t : threads) t.join();
+    });
     return builds;
 }
 

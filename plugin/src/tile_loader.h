@@ -56,10 +56,12 @@ public:
     size_t finishedCount() const;  // finished and not yet taken
     Totals totals() const;
 
-    // Builds `keys` at once on short-lived threads (as many as the workers), leaving the queue alone
-    // (preload). Builds are in the order of `keys`, without geomorph parents.
+    // Builds `keys` at once on the workers, beside the queue (preload), and returns when all are
+    // built. Builds are in the order of `keys`, without geomorph parents.
     std::vector<TileBuild> buildNow(const std::vector<TileKey>& keys, const HeightSource& source,
                                     const TypeSource& types) const;
+    // WorkerPool::runOnEveryThread.
+    void runOnEveryThread(const std::function<void()>& fn) const { pool_->runOnEveryThread(fn); }
 
 private:
     struct Building {

@@ -65,14 +65,36 @@ void WorkerPool::waitIdle() {
     idle_.wait(lock, [this] { return queue_.empty() && running_ == 0; });
 }
 
+void WorkerPool::runOnEveryThread(const std::function<void()>& fn) {
+    std::lock_guard<std::mutex> turn(every_thread_turn_);
+    std::unique_lock<std::mutex> lock(mutex_);
+    every_thread_ = &fn;
+    every_thread_left_ = threads_.size();
+    ++every_thread_round_;
+    wake_.notify_all();
+    idle_.wait(lock, [this] { return every_thread_left_ == 0; });
+    every_thread_ = nullptr;
+}
+
 void WorkerPool::workerLoop() {
     // Below the frame loop's priority: on a machine with as many workers as cores, the update, cull
     // and draw threads must not wait for a tile build to yield the CPU (Linux: nice is per thread).
     setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kWorkerNice);
     std::unique_lock<std::mutex> lock(mutex_);
+    uint64_t round_done = 0;  // not the member: a thread may first run after a round has begun
     for (;;) {
-        wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+        wake_.wait(lock, [&] { return stopping_ || !queue_.empty() || round_done != every_thread_round_; });
         if (stopping_) return;
+        if (round_done != every_thread_round_) {
+            round_done = every_thread_round_;
+            const std::function<void()>* fn = every_thread_;
+            lock.unlock();
+            invokeGuarded([&] { (*fn)(); },
+                          [](const std::string& why) { std::fprintf(stderr, "terrasynth worker: %s\n", why.c_str()); });
+            lock.lock();
+            if (--every_thread_left_ == 0) idle_.notify_all();
+            continue;
+        }
         Task task = std::move(queue_.back());
         queue_.pop_back();
         ++running_;

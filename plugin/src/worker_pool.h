@@ -39,6 +39,12 @@ public:
     size_t pending() const;
     // Blocks until nothing is queued or running.
     void waitIdle();
+    // Runs `fn` once on each worker thread, beside the queue (workers busy with a task run it after
+    // that task), and returns when every worker has. For what belongs to a thread, made before the
+    // frame loop needs it: each worker's synthesizer, so that no OpenCL context or kernel build
+    // happens while a frame is drawn or the graphics context closes. `fn` must not throw or call
+    // back into the pool. One caller at a time (calls from several threads take turns).
+    void runOnEveryThread(const std::function<void()>& fn);
     int threadCount() const { return static_cast<int>(threads_.size()); }
 
 private:
@@ -51,6 +57,10 @@ private:
     std::vector<Task> queue_;  // sorted so that the best task is at the back
     size_t running_ = 0;
     bool stopping_ = false;
+    std::mutex every_thread_turn_;                      // one runOnEveryThread at a time
+    const std::function<void()>* every_thread_ = nullptr;  // what runOnEveryThread runs
+    uint64_t every_thread_round_ = 0;                   // its calls so far
+    size_t every_thread_left_ = 0;                      // workers yet to run this round's
     std::vector<std::thread> threads_;
 };
 

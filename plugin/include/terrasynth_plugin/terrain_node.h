@@ -27,6 +27,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -152,6 +153,10 @@ public:
     // waits, makes them resident and the node's children (for osgconv, bounds and first frames;
     // preload the root level too so the first frame has something to draw). Errors: a failed tile.
     Status preload(const PixelWindow& region, int level);
+    // Runs `fn` once on each worker thread and returns when all have: for what belongs to a thread
+    // and should exist before the frame loop starts (each worker's synthesizer: Terrain's
+    // prepareThisThread). `fn` must not call back into the node. Thread-safe.
+    void runOnEveryWorker(const std::function<void()>& fn) const;
 
     // Marks every tile whose samples (apron included) may change when the level-0 heights inside
     // `region` change, widened by `margin_px` level-0 pixels for filters that spread an edit.

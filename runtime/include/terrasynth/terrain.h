@@ -47,6 +47,13 @@ public:
     // Sidecar problems met while opening, oldest first.
     std::vector<std::string> warnings() const;
 
+    // Creates the calling thread's synthesizer now (device context, kernels, database upload)
+    // rather than on its first query: worker threads call it before a frame loop starts, so that
+    // no OpenCL context or program is made while frames are drawn or a graphics context closes
+    // (in one process, a CPU OpenCL driver and a software GL driver may both be compiling with the
+    // same LLVM). Errors: those of creating a synthesizer (no OpenCL device, kernel build).
+    Status prepareThisThread();
+
     // Final heights (synthesis + edits) of a window of the global grid at `level`.
     // Bit-identical for overlapping windows.
     Result<Heightfield> heights(const PixelWindow& window, int level = 0);

@@ -178,6 +178,11 @@ Result<SynthesisOutput> Terrain::synthesize(const PixelWindow& window, int level
     return impl_->world->synthesize(window, level, want_sources, edit);
 }
 
+Status Terrain::prepareThisThread() {
+    auto synthesizer = impl_->pool->forThisThread();
+    return synthesizer ? Status::ok() : synthesizer.status();
+}
+
 Result<Heightfield> Terrain::heights(const PixelWindow& window, int level) {
     auto out = synthesize(window, level, false);
     if (!out) return out.status();
