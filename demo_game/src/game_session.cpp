@@ -8,6 +8,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <mutex>
 #include <unordered_set>
 
 #define GLFW_INCLUDE_NONE
@@ -184,6 +185,20 @@ bool Session::makeWorld(std::shared_ptr<Terrain> terrain) {
     w.source = plugin::tileGroupedSource(std::move(w.source), po.node.tile_size);
     if (!po.max_level_given) po.node.max_level = plugin::clampedMaxLevel(po.node, terrain->database().levelCount());
     w.node = new plugin::TerrainNode(w.source, w.mpp, po.node);
+    // Each tile worker's synthesizer now rather than during the first frames, as the osgDB reader
+    // does (reader_writer_tsyn.cpp: one still being made while the window closed corrupted the heap).
+    std::mutex failure_mutex;
+    Status prepared = Status::ok();
+    w.node->runOnEveryWorker([&] {
+        Status s = terrain->prepareThisThread();
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!s && prepared) prepared = s;
+    });
+    if (!prepared) {
+        std::fprintf(stderr, "terrasynth_game: %s\n", prepared.message().c_str());
+        exit_code_ = 2;
+        return false;
+    }
     plugin::TerrainLook look = start_heights_ ? plugin::lookForHeightRange(start_heights_->first, start_heights_->second)
                                               : plugin::TerrainLook{};
     look.fog_visibility_m = static_cast<float>(0.9 * w.node->options().view_radius_m);
