@@ -8,7 +8,6 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <mutex>
 #include <unordered_set>
 
 #define GLFW_INCLUDE_NONE
@@ -187,15 +186,8 @@ bool Session::makeWorld(std::shared_ptr<Terrain> terrain) {
     w.node = new plugin::TerrainNode(w.source, w.mpp, po.node);
     // Each tile worker's synthesizer now rather than during the first frames, as the osgDB reader
     // does (reader_writer_tsyn.cpp: one still being made while the window closed corrupted the heap).
-    std::mutex failure_mutex;
-    Status prepared = Status::ok();
-    w.node->runOnEveryWorker([&] {
-        Status s = terrain->prepareThisThread();
-        std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!s && prepared) prepared = s;
-    });
-    if (!prepared) {
-        std::fprintf(stderr, "terrasynth_game: %s\n", prepared.message().c_str());
+    if (Status s = w.node->runOnEveryWorker([&] { return terrain->prepareThisThread(); }); !s) {
+        std::fprintf(stderr, "terrasynth_game: %s\n", s.message().c_str());
         exit_code_ = 2;
         return false;
     }

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <exception>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include <osg/Notify>
@@ -137,14 +136,8 @@ private:
         // still creating its own (PoCL context, program, database upload) when osgviewer closed
         // its window after a 20-frame run, and the process aborted in Mesa's glXDestroyContext
         // with a corrupted heap: about 1 run in 3 on 2 cores, none in 14 since.
-        std::mutex failure_mutex;
-        Status prepared = Status::ok();
-        node->runOnEveryWorker([&] {
-            Status s = shared->prepareThisThread();
-            std::lock_guard<std::mutex> lock(failure_mutex);
-            if (!s && prepared) prepared = s;
-        });
-        if (!prepared) return ReadResult(path + ": " + prepared.message());
+        if (Status s = node->runOnEveryWorker([&] { return shared->prepareThisThread(); }); !s)
+            return ReadResult(path + ": " + s.message());
         if (opts.preload) {
             const int level = opts.preload_level >= 0 ? opts.preload_level
                                                       : automaticPreloadLevel(shared->project(), opts.node);

@@ -259,7 +259,16 @@ Status TerrainNode::preload(const PixelWindow& region, int level) {
     return Status::ok();
 }
 
-void TerrainNode::runOnEveryWorker(const std::function<void()>& fn) const { loader_->runOnEveryThread(fn); }
+Status TerrainNode::runOnEveryWorker(const std::function<Status()>& fn) const {
+    std::mutex failure_mutex;
+    Status first_failure = Status::ok();
+    loader_->runOnEveryThread([&] {
+        Status s = fn();
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!s && first_failure) first_failure = std::move(s);
+    });
+    return first_failure;
+}
 
 TerrainStats TerrainNode::stats() const {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -155,8 +155,9 @@ public:
     Status preload(const PixelWindow& region, int level);
     // Runs `fn` once on each worker thread and returns when all have: for what belongs to a thread
     // and should exist before the frame loop starts (each worker's synthesizer: Terrain's
-    // prepareThisThread). `fn` must not call back into the node. Thread-safe.
-    void runOnEveryWorker(const std::function<void()>& fn) const;
+    // prepareThisThread). Returns the first failure any worker's `fn` returned, else ok. `fn` must
+    // not call back into the node. Thread-safe.
+    Status runOnEveryWorker(const std::function<Status()>& fn) const;
 
     // Marks every tile whose samples (apron included) may change when the level-0 heights inside
     // `region` change, widened by `margin_px` level-0 pixels for filters that spread an edit.
