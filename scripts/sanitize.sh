@@ -84,7 +84,7 @@ run() {
 
 # The bad-input suite (SANITIZE_SCOPE=input): the programs that feed the readers, parsers and
 # writers corrupt, hostile or absurd input, plus the replay of the fuzz corpus (always built).
-INPUT_TEST_PROGRAMS='hardening|hostile|sidecar|^core_io_test$|^core_transaction_test$|^project_format_test$|^db_dem_cli_test$|^db_test_databases_test$'
+INPUT_TEST_PROGRAMS='hardening|hostile|sidecar|^core_io_test$|^core_transaction_test$|^project_format_test$|^db_dem_cli_test$|^db_test_databases_test$|^python_tests$'
 # The threads suite (SANITIZE_SCOPE=threads): the programs whose code runs on several threads at
 # once, and of them the tests that drive those threads (the others are single-threaded runs of the
 # same programs, minutes under TSan).

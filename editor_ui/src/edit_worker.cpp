@@ -192,6 +192,11 @@ HeightSource EditWorker::heightSource() const {
     return session_->heightSource();
 }
 
+Status EditWorker::prepareThisThread() const {
+    TERRASYNTH_REQUIRE(state_.load() == State::Ready, "the session is not open");
+    return session_->prepareThisThread();
+}
+
 uint64_t EditWorker::editCount() const {
     TERRASYNTH_REQUIRE(state_.load() == State::Ready, "the session is not open");
     return session_->editCount();

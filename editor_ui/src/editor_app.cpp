@@ -185,6 +185,11 @@ void EditorApp::ensureTerrain() {
     auto parsed = plugin::parsePluginOptions(settings);  // checked with the command line
     const plugin::TerrainNodeOptions o = parsed ? parsed->node : plugin::TerrainNodeOptions{};
     terrain_ = new plugin::TerrainNode(worker_->heightSource(), v.frame.meters_per_pixel, o);
+    // Each tile worker makes its synthesizer before the first frame that draws tiles, as the osgDB
+    // reader and the game do (docs/plugin.md): no OpenCL context is made while a frame is drawn or
+    // the window closes. A failure here is the edit thread's too, which reported it when it opened.
+    if (Status s = terrain_->runOnEveryWorker([this] { return worker_->prepareThisThread(); }); !s)
+        std::fprintf(stderr, "terrasynth_editor: tile workers: %s\n", s.message().c_str());
     worker_->attachTerrain(terrain_);
     plugin::TerrainLook look = plugin::lookForHeightRange(v.min_height_m, v.max_height_m);
     look.type_colours[plugin::TerrainLook::kTypeColours - 1] = kFrozenColour;

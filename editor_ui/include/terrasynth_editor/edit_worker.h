@@ -153,9 +153,10 @@ public:
     std::pair<std::string, double> running() const;
     // Blocks until idle (tests, scripts). False on timeout.
     bool waitIdle(double timeout_s);
-    // The session's heightSource(), editCount() and isDirty() (thread-safe in the session); the
-    // session must be open.
+    // The session's heightSource(), prepareThisThread(), editCount() and isDirty() (thread-safe in
+    // the session); the session must be open.
     HeightSource heightSource() const;
+    Status prepareThisThread() const;
     uint64_t editCount() const;
 
 private:

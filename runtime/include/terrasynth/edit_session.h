@@ -188,6 +188,10 @@ public:
     // Level 0 inside the extent is bit-exact with heights(); outside it and at coarser levels it is
     // the reference synthesis plus the block mean of the edit.
     HeightSource heightSource() const;
+    // Creates the calling thread's synthesizer now rather than on its first read, as
+    // Terrain::prepareThisThread does (terrain.h says why): a front end's tile workers call it before
+    // its frame loop starts. Errors: those of creating a synthesizer (no OpenCL device, kernel build).
+    Status prepareThisThread() const;
     // Level-0 height at world point (x east, y north, metres), bilinear between the four samples
     // around it (exact: the samples are the world's). About 0.1 us when those samples are inside the
     // extent; elsewhere it synthesizes a 2x2 window (milliseconds).

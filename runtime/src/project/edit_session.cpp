@@ -396,6 +396,11 @@ HeightSource EditSession::heightSource() const {
     return [snap](const PixelWindow& window, int level) { return snap->world->heights(window, level, snap->edit.get()); };
 }
 
+Status EditSession::prepareThisThread() const {
+    auto synthesizer = impl_->pool->forThisThread();
+    return synthesizer ? Status::ok() : synthesizer.status();
+}
+
 Result<std::vector<double>> EditSession::heightsAt(const std::vector<std::array<double, 2>>& points) const {
     std::shared_ptr<const SessionSnapshot> snap = std::atomic_load(&impl_->snapshot);
     const GridFrame grid = frame();
