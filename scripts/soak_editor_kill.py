@@ -36,9 +36,10 @@ AERIAL_START = "settle\nview aerial 512 512 60000\nsettle\n"  # as tests/editor_
 
 
 def grid_positions():
-    """Screen positions on the terrain (1280x720, the middle 30 km of a 60 km aerial view), 30 px
-    apart so that a click never lands on an earlier point's handle (kHandlePx, 12 px): 324."""
-    return [(x, y) for y in range(100, 640, 30) for x in range(380, 920, 30)]
+    """Screen positions on the terrain (1280x720, the middle 30 km of a 60 km aerial view), 24 px
+    apart so that a click never lands on an earlier point's handle (kHandlePx, 12 px): 529, enough
+    for 20 kills of a quiet machine's two edits a second (324 at 30 px ran out after 16)."""
+    return [(x, y) for y in range(100, 640, 24) for x in range(380, 920, 24)]
 
 
 def project_points(path):
