@@ -274,7 +274,8 @@ TS_INLINE void consider_candidate(global const ushort4* appearance, int width, c
 // (constraints/constraint_fields.h); `blend` holds, per region
 // pixel, the point and curve constraints' inverse-distance sums (sum b, sum b*h_t, sum b*d), which
 // pull the chosen height towards the blended target with phi_d. `median_offset`: the level takes
-// eq. 7's offset h as a median (candidate_cost).
+// eq. 7's offset h as a median (candidate_cost). `lowest_height`: the floor of unconstrained heights
+// (synth/level_ground.h, lowestExemplarHeight).
 kernel void correct(global float4* state, Region region, int first_x, int first_y, int inset,
                     global const ushort4* appearance, global const uint2* similar, int width, float4 scale,
                     global const uint* target_sets, int use_types, global const uchar* atlas_type,
@@ -282,7 +283,8 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
                     global const float4* blend, int use_blend, global const float* heights, global const uint* prev_index,
                     global const float* prev_v, global const uchar* coherence, int use_prev,
                     global const uchar* atlas_exemplar, global const uchar* layout, int use_layout,
-                    global const uchar* level_ground, float level_tolerance, int median_offset, int atlas_pixels) {
+                    global const uchar* level_ground, float level_tolerance, float lowest_height, int median_offset,
+                    int atlas_pixels) {
     const int lx = first_x + 2 * (int)get_global_id(0), ly = first_y + 2 * (int)get_global_id(1);
     if (lx >= region.width - inset || ly >= region.height - inset) return;
     const int pixel = ly * region.width + lx;
@@ -438,6 +440,9 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
     }
     // Drainage (issue 17): a channel carved at the coarser level (drainage_breach.h) stays at or
     // below the carved height however the candidates re-detail it; constraints win over channels.
+    // Nothing below the exemplars' lowest ground (synth/level_ground.h, lowestExemplarHeight) but
+    // what constraints ask for and the channels a coarser level carved (the ceiling, next).
+    if (!keep_v && !constrained) v = fmax(v, lowest_height - heights[best_q]);
     if (ceiling < INFINITY && !constrained) v = fmin(v, ceiling - heights[best_q]);
     state[pixel] = (float4)((float)(best_q % width), (float)(best_q / width), v, ceiling);
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -306,26 +307,36 @@ TEST(DeviceBreach, SynthesesOfADuneFieldAndAFluvialExemplarEqualTheHostBreach) {
     EXPECT_NE(off.value().heights.heights, on_host->heights.heights);  // the breach did act
 }
 
+// orom_norway alone (sea, fjords and lakes: its lowest ground is level water at 0 m), seed 3, over
+// `w` with the breach on the host and on the device, which must agree bit for bit.
+void norwayOnBothBreaches(const PixelWindow& w, std::shared_ptr<const ExemplarDatabase>* db,
+                          std::optional<SynthesisOutput>* on_host) {
+    auto loaded = loadOrBuildDatabase({test::sharedExemplarsDir() + "/orom_norway.png"}, DatabaseBuildOptions{},
+                                      test::tmpPath("level_ground_norway.tsdb"));
+    ASSERT_TRUE(loaded) << loaded.message();
+    *db = loaded.value();
+    auto device = synthesizerBreachingOn("device", *db), host = synthesizerBreachingOn("host", *db);
+    ASSERT_TRUE(device && host);
+    SynthesisParams p;
+    p.seed = 3;
+    *on_host = sameOnBothBreaches(*device, *host, w, p);
+    ASSERT_TRUE(*on_host);
+}
+
 TEST(DeviceBreach, LevelGroundStaysLevelWithTheSameBitsFromBothBreaches) {
     // orom_norway's sea, fjords and lakes: 8% of it is level ground (synth/level_ground.h). The
     // correction settles copies of it level and the breach leaves it level, with the same bits from
     // the breach on the host and on the device. (The reference backend differs from OpenCL here by
     // a float step in V from level 3 on, before level ground too; with level ground such a step can
     // flip a comparison. SynthesisDifferential holds on the default database.)
-    auto db = loadOrBuildDatabase({test::sharedExemplarsDir() + "/orom_norway.png"}, DatabaseBuildOptions{},
-                                  test::tmpPath("level_ground_norway.tsdb"));
-    ASSERT_TRUE(db) << db.message();
-    auto device = synthesizerBreachingOn("device", db.value()), host = synthesizerBreachingOn("host", db.value());
-    ASSERT_TRUE(device && host);
     const PixelWindow w{-40, 210, 256, 256};
-    SynthesisParams p;
-    p.seed = 3;
-    const std::optional<SynthesisOutput> on_host = sameOnBothBreaches(*device, *host, w, p);
-    ASSERT_TRUE(on_host);
+    std::shared_ptr<const ExemplarDatabase> db;
+    std::optional<SynthesisOutput> on_host;
+    ASSERT_NO_FATAL_FAILURE(norwayOnBothBreaches(w, &db, &on_host));
     // Of the interior pixels copied from level ground, the share whose slope (central differences)
     // is under 0.5 degrees: in this window 14% before level ground, 38% with it.
-    const DatabaseLevel& level0 = db.value()->levels[0];
-    const std::vector<uint8_t> flags = synth::levelGroundFlags(level0, synth::LevelGround::tolerance(*db.value()));
+    const DatabaseLevel& level0 = db->levels[0];
+    const std::vector<uint8_t> flags = synth::levelGroundFlags(level0, synth::LevelGround::tolerance(*db));
     const SynthesisOutput& out = *on_host;
     const double spacing = out.heights.meters_per_pixel_x;
     size_t level_sources = 0, kept_level = 0;
@@ -344,6 +355,40 @@ TEST(DeviceBreach, LevelGroundStaysLevelWithTheSameBitsFromBothBreaches) {
     const size_t interior = static_cast<size_t>(w.width - 2) * (w.height - 2);
     EXPECT_GT(level_sources, interior / 50) << "the window copies level ground";
     EXPECT_GT(kept_level, level_sources / 4) << kept_level << " of " << level_sources;
+}
+
+TEST(DeviceBreach, TheSeaStaysAtSeaLevelAndOnlyCarvedChannelsGoBelowIt) {
+    // orom_norway's sea is its lowest ground, at 0 m on 7% of it. Level ground settles to its lowest
+    // neighbour, and before the floor (synth/level_ground.h, lowestExemplarHeight) the copied sea
+    // sank with its neighbours' offsets: 13.2% of this window under 0 m, none of it at 0 m, down to
+    // -523 m in the whole 1024^2. Now only channels carved at coarse levels go under it (0.7%), and
+    // most copies of the sea are at sea level exactly, with the same bits from the breach on the host
+    // and on the device.
+    const PixelWindow w{0, 0, 384, 384};
+    std::shared_ptr<const ExemplarDatabase> db;
+    std::optional<SynthesisOutput> on_host;
+    ASSERT_NO_FATAL_FAILURE(norwayOnBothBreaches(w, &db, &on_host));
+    const DatabaseLevel& level0 = db->levels[0];
+    const float lowest = synth::lowestExemplarHeight(level0);
+    EXPECT_EQ(lowest, 0.0f);  // the sea, as the sidecar's height range says
+    const float tolerance = synth::LevelGround::tolerance(*db);
+    const std::vector<uint8_t> flags = synth::levelGroundFlags(level0, tolerance);
+    const SynthesisOutput& out = *on_host;
+    size_t below = 0, sea_sources = 0, at_sea_level = 0;
+    for (size_t i = 0; i < out.heights.size(); ++i) {
+        below += out.heights.heights[i] < lowest;
+        const AtlasRect& r = level0.rects[out.source_exemplar[i]];
+        const size_t q = static_cast<size_t>(r.y + std::lround(out.source_y[i])) * level0.width + r.x +
+                         std::lround(out.source_x[i]);
+        if (!flags[q] || level0.height_m[q] > lowest + tolerance) continue;
+        ++sea_sources;
+        at_sea_level += out.heights.heights[i] == lowest;
+    }
+    std::printf("%zu of %zu pixels below %g m; %zu of %zu copies of the sea at sea level\n", below, out.heights.size(),
+                lowest, at_sea_level, sea_sources);
+    EXPECT_LT(below, out.heights.size() / 50);
+    EXPECT_GT(sea_sources, out.heights.size() / 50) << "the window copies the sea";
+    EXPECT_GT(at_sea_level, sea_sources / 2);  // none before
 }
 
 TEST(DeviceBreach, TheSynthesizerDrainsByDefaultAndOnTheDevice) {

@@ -73,7 +73,9 @@ constexpr int kInitialPatchSize = 24;
 // Level ground (beyond the paper): a pixel whose source is level (its 8 exemplar neighbours within
 // tan 0.5 degrees times the database's spacing of it: lakes, sea, flat floors) goes no higher than
 // its lowest neighbour copied from the same level ground, so copied water settles level instead of
-// being tilted by the offsets V. Always on; a local rule, so windows stay exact.
+// being tilted by the offsets V. Nor does an unconstrained pixel go below the lowest height of the
+// level's exemplar pixels (their sea or lowest lake), except in channels the drainage carved at a
+// coarser level: copied water below it is level at it. Always on; local rules, so windows stay exact.
 
 // Drainage (beyond the paper, whose s6 notes that pixel-based synthesis drains
 // unrealistically). Breach: after the correction passes of every level, each closed pit looks for the

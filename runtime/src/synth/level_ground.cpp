@@ -16,6 +16,15 @@ std::vector<uint8_t> levelGroundFlags(const DatabaseLevel& db, float tolerance) 
     return flags;
 }
 
+float lowestExemplarHeight(const DatabaseLevel& db) {
+    float lowest = INFINITY;
+    for (const AtlasRect& r : db.rects)
+        for (int y = r.y; y < r.y + r.height; ++y)
+            for (int x = r.x; x < r.x + r.width; ++x)
+                lowest = std::fmin(lowest, db.height_m[static_cast<size_t>(y) * db.width + x]);
+    return lowest;
+}
+
 const std::vector<uint8_t>& LevelGround::flags(const ExemplarDatabase& db, int level) {
     if (flags_.size() != db.levels.size()) flags_.assign(db.levels.size(), {}), known_.assign(db.levels.size(), 0);
     if (!known_[level]) flags_[level] = levelGroundFlags(db.levels[level], tolerance(db)), known_[level] = 1;

@@ -44,6 +44,20 @@ inline float levelGroundTolerance(double meters_per_pixel0) {
 // instructions.
 std::vector<uint8_t> levelGroundFlags(const DatabaseLevel& db, float tolerance);
 
+// The lowest height of the level's exemplar pixels (inside their atlas rectangles), metres: the
+// floor of what the correction copies (kernel correct, referenceCorrect). Sources are copied as
+// E(S) + V, and level ground settles to its lowest neighbour, so with nothing below it a sea or a
+// lake at the exemplar's lowest height sank with whatever offset its neighbours had: orom_norway's
+// sea at 0 m came out on 10% of a 1024^2 synthesis, down to -523 m, and osge_mt_fuji_90m had 4-7%
+// of its output under its lowest height (issue 57, item 3). An unconstrained pixel's V is raised so
+// that E(S) + V is at least this: what lies below the lowest ground the exemplars show (their base
+// level, a sea or a lowest lake) is level at that height, as water is. Point and curve constraints
+// may still ask for lower ground, and a channel carved at a coarser level (its ceiling) may cut
+// below it. Held at the floor, or at most 1 m under it, those channels left orom_norway's closed
+// depressions over the breach's check (ExemplarRealism: 0.0135-0.0138 against 0.0130); left free,
+// they reach -332 m there on 0.75% of the output (docs/realism.md, "Known weaknesses").
+float lowestExemplarHeight(const DatabaseLevel& db);
+
 // levelGroundFlags of each level at the database's tolerance, computed on first use (a synthesizer
 // owns one; not thread-safe).
 class LevelGround {

@@ -7,6 +7,7 @@
 
 #include "core/hash.h"
 #include "synth/initial_patches.h"
+#include "synth/level_ground.h"
 
 namespace terrasynth::synth {
 using core::hash3;
@@ -395,6 +396,9 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
             }
             // Drainage (drainage_breach.h): carved channels stay at or below their carved height; constraints
             // win over channels.
+            // Nothing below the exemplars' lowest ground (level_ground.h, lowestExemplarHeight) but
+            // what constraints ask for and the channels a coarser level carved (the ceiling, next).
+            if (!keep_v && !constrained) v = std::fmax(v, context.lowest_height - db.height_m[static_cast<size_t>(best_q)]);
             if (ceiling < INFINITY && !constrained) v = std::fmin(v, ceiling - db.height_m[static_cast<size_t>(best_q)]);
             PixelState& out = state[static_cast<size_t>(ly) * region.width + lx];
             out.x = static_cast<float>(best_q % db.width);

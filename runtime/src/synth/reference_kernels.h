@@ -79,6 +79,8 @@ struct CorrectionContext {
     // no level ground.
     const std::vector<uint8_t>* level_ground = nullptr;
     float level_tolerance = 0.0f;
+    // lowestExemplarHeight of the level (synth/level_ground.h): the floor of unconstrained heights.
+    float lowest_height = -INFINITY;
 };
 
 // Eq. 3-7 (and the constraints of s5.1-5.2) for the pixels of one parity class, in place.
