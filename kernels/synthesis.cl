@@ -438,11 +438,11 @@ kernel void correct(global float4* state, Region region, int first_x, int first_
         const float candidate_height = heights[best_q] + v;
         v = v + phi_d(sums.y / sums.x - candidate_height, sums.z / sums.x, TOLERANCE_SLOPE, BLEND_SLOPE);
     }
-    // Drainage (issue 17): a channel carved at the coarser level (drainage_breach.h) stays at or
-    // below the carved height however the candidates re-detail it; constraints win over channels.
     // Nothing below the exemplars' lowest ground (synth/level_ground.h, lowestExemplarHeight) but
     // what constraints ask for and the channels a coarser level carved (the ceiling, next).
     if (!keep_v && !constrained) v = fmax(v, lowest_height - heights[best_q]);
+    // Drainage (issue 17): a channel carved at the coarser level (drainage_breach.h) stays at or
+    // below the carved height however the candidates re-detail it; constraints win over channels.
     if (ceiling < INFINITY && !constrained) v = fmin(v, ceiling - heights[best_q]);
     state[pixel] = (float4)((float)(best_q % width), (float)(best_q / width), v, ceiling);
 }

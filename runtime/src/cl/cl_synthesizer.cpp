@@ -34,7 +34,6 @@ struct DeviceLevel {
     BufferHandle level_ground;  // synth::levelGroundFlags, uchar per atlas pixel
     cl_int width = 0;
     cl_uint pixels = 0, closed_pixels = 0;
-    cl_float lowest_height = 0.0f;  // synth::lowestExemplarHeight
     cl_float4 offset{}, scale{};
 };
 
@@ -177,7 +176,6 @@ private:
             d.width = l.width;
             d.pixels = static_cast<cl_uint>(l.pixelCount());
             d.closed_pixels = static_cast<cl_uint>(l.closed.size());
-            d.lowest_height = synth::lowestExemplarHeight(l);
             for (int m = 0; m < 4; ++m) d.offset.s[m] = l.appearance_offset[m], d.scale.s[m] = l.appearance_scale[m];
             levels_.push_back(std::move(d));
         }
@@ -316,7 +314,7 @@ private:
             d.width)(d.scale)(target_sets_.get())(use_types_)(d.types.get())(
             d.type_seeds.get())(d.seed_ranges.get())(seed_salt_)(blend_.get())(use_blend_)(d.heights.get())(prev_index_.get())(
             prev_v_.get())(coherence_.get())(use_prev_)(d.exemplar.get())(layout_.get())(cl_int{level == coarsest_ ? 1 : 0})(
-            d.level_ground.get())(synth::LevelGround::tolerance(*db_))(d.lowest_height)(
+            d.level_ground.get())(synth::LevelGround::tolerance(*db_))(level_ground_.lowest(*db_, level))(
             cl_int{level < synth::kMedianOffsetLevels ? 1 : 0})(static_cast<cl_int>(d.pixels));
         if (!args.status()) return args.status();
         return run(correct_.get(), count_x, count_y);

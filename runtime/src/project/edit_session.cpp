@@ -396,10 +396,7 @@ HeightSource EditSession::heightSource() const {
     return [snap](const PixelWindow& window, int level) { return snap->world->heights(window, level, snap->edit.get()); };
 }
 
-Status EditSession::prepareThisThread() const {
-    auto synthesizer = impl_->pool->forThisThread();
-    return synthesizer ? Status::ok() : synthesizer.status();
-}
+Status EditSession::prepareThisThread() const { return impl_->pool->prepareThisThread(); }
 
 Result<std::vector<double>> EditSession::heightsAt(const std::vector<std::array<double, 2>>& points) const {
     std::shared_ptr<const SessionSnapshot> snap = std::atomic_load(&impl_->snapshot);

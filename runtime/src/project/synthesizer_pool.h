@@ -17,6 +17,11 @@ public:
         : db_(std::move(db)), options_(std::move(options)) {}
     // This thread's synthesizer. Thread-safe. Errors: those of Synthesizer::create.
     Result<Synthesizer*> forThisThread();
+    // forThisThread made now, its synthesizer unused (Terrain's and EditSession's prepareThisThread).
+    Status prepareThisThread() {
+        auto synthesizer = forThisThread();
+        return synthesizer ? Status::ok() : synthesizer.status();
+    }
     // A synthesizer nobody else uses (an edit thread's own). Errors: those of Synthesizer::create.
     Result<std::unique_ptr<Synthesizer>> createPrivate() const { return Synthesizer::create(db_, options_); }
     const ExemplarDatabase& database() const { return *db_; }

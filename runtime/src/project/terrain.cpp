@@ -178,10 +178,7 @@ Result<SynthesisOutput> Terrain::synthesize(const PixelWindow& window, int level
     return impl_->world->synthesize(window, level, want_sources, edit);
 }
 
-Status Terrain::prepareThisThread() {
-    auto synthesizer = impl_->pool->forThisThread();
-    return synthesizer ? Status::ok() : synthesizer.status();
-}
+Status Terrain::prepareThisThread() { return impl_->pool->prepareThisThread(); }
 
 Result<Heightfield> Terrain::heights(const PixelWindow& window, int level) {
     auto out = synthesize(window, level, false);

@@ -31,4 +31,10 @@ const std::vector<uint8_t>& LevelGround::flags(const ExemplarDatabase& db, int l
     return flags_[level];
 }
 
+float LevelGround::lowest(const ExemplarDatabase& db, int level) {
+    if (lowest_.size() != db.levels.size()) lowest_.assign(db.levels.size(), 0.0f), lowest_known_.assign(db.levels.size(), 0);
+    if (!lowest_known_[level]) lowest_[level] = lowestExemplarHeight(db.levels[level]), lowest_known_[level] = 1;
+    return lowest_[level];
+}
+
 }  // namespace terrasynth::synth

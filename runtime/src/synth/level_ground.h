@@ -58,16 +58,19 @@ std::vector<uint8_t> levelGroundFlags(const DatabaseLevel& db, float tolerance);
 // they reach -332 m there on 0.75% of the output (docs/realism.md, "Known weaknesses").
 float lowestExemplarHeight(const DatabaseLevel& db);
 
-// levelGroundFlags of each level at the database's tolerance, computed on first use (a synthesizer
-// owns one; not thread-safe).
+// levelGroundFlags and lowestExemplarHeight of each level (the flags at the database's tolerance),
+// computed on first use (a synthesizer owns one; not thread-safe).
 class LevelGround {
 public:
     const std::vector<uint8_t>& flags(const ExemplarDatabase& db, int level);
+    float lowest(const ExemplarDatabase& db, int level);
     static float tolerance(const ExemplarDatabase& db) { return levelGroundTolerance(db.meters_per_pixel); }
 
 private:
     std::vector<std::vector<uint8_t>> flags_;
     std::vector<uint8_t> known_;
+    std::vector<float> lowest_;
+    std::vector<uint8_t> lowest_known_;
 };
 
 }  // namespace terrasynth::synth

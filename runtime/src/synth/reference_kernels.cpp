@@ -7,7 +7,6 @@
 
 #include "core/hash.h"
 #include "synth/initial_patches.h"
-#include "synth/level_ground.h"
 
 namespace terrasynth::synth {
 using core::hash3;
@@ -394,11 +393,11 @@ void referenceCorrect(const DatabaseLevel& db, const LevelRegion& region, int pa
                 const float candidate_height = db.height_m[static_cast<size_t>(best_q)] + v;
                 v = v + phiD(sums[1] / sums[0] - candidate_height, sums[2] / sums[0], kPointToleranceSlope, kPointBlendSlope);
             }
-            // Drainage (drainage_breach.h): carved channels stay at or below their carved height; constraints
-            // win over channels.
             // Nothing below the exemplars' lowest ground (level_ground.h, lowestExemplarHeight) but
             // what constraints ask for and the channels a coarser level carved (the ceiling, next).
             if (!keep_v && !constrained) v = std::fmax(v, context.lowest_height - db.height_m[static_cast<size_t>(best_q)]);
+            // Drainage (drainage_breach.h): carved channels stay at or below their carved height; constraints
+            // win over channels.
             if (ceiling < INFINITY && !constrained) v = std::fmin(v, ceiling - db.height_m[static_cast<size_t>(best_q)]);
             PixelState& out = state[static_cast<size_t>(ly) * region.width + lx];
             out.x = static_cast<float>(best_q % db.width);

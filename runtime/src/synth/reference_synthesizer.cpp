@@ -47,7 +47,7 @@ public:
         context_.layout = level == coarsest_ ? layout_ : std::vector<uint8_t>{};
         context_.level_ground = &levelGround(level);
         context_.level_tolerance = LevelGround::tolerance(db_);
-        context_.lowest_height = lowestExemplarHeight(db_.levels[level]);
+        context_.lowest_height = level_ground_.lowest(db_, level);
         return Status::ok();
     }
     Status beginPass(int, const LevelRegion&, const PassHistory& previous) override {
