@@ -127,11 +127,9 @@ def main():
 
 
 def run_all(repo, build, scratch, display):
-    # OSG_WINDOW: stock osgviewer opens a window, as on a desktop, not its default full-screen one.
-    # On Xvfb (no window manager) with Mesa's software GL on bookworm, a full-screen osgviewer
-    # corrupts the heap and aborts at exit in about 1 run in 3 on a loaded 2-core machine, whatever
-    # it shows (a one-triangle OBJ file does it too); windows at 0,0 (1280x720, 800x600, 640x480)
-    # did not in 120 runs.
+    # OSG_WINDOW: stock osgviewer opens a window, as on a desktop: its default full screen on Xvfb
+    # with bookworm's Mesa software GL aborts at exit about 1 run in 3, whatever it shows (the
+    # measurements are in docs/plugin.md, "Without a display").
     env = dict(os.environ, DISPLAY=display, OSG_RUN_FRAME_COUNT="20", OSG_NOTIFY_LEVEL="WARN",
                OSG_WINDOW="0 0 1280 720")
     env.setdefault("POCL_CACHE_DIR", os.path.join(build, "pocl_cache"))
